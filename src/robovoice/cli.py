@@ -18,6 +18,7 @@ from robovoice.errors import RobovoiceError
 # Command modules, in the order their commands appear in --help.
 COMMAND_MODULES = (
     "robovoice.commands.robot",
+    "robovoice.commands.sim",
     "robovoice.commands.assistant",
     "robovoice.commands.voice",
     "robovoice.commands.bench",
