@@ -1,0 +1,207 @@
+"""The conversation loop: model → tool calls → results back → model, one turn at a time.
+
+Text the model streams is split into sentences as it arrives and each complete sentence is
+handed on at once (`SentenceReady`), so speech can start while the model still generates.
+Robot-side tool errors go back to the model as tool results so it can recover (ask the user,
+list the places). When no backend answers, the turn ends with the spoken fallback message.
+"""
+
+from __future__ import annotations
+
+import inspect
+import json
+import logging
+import time
+from collections.abc import Awaitable, Callable, Sequence
+from dataclasses import dataclass
+
+from robovoice.assistant.events import (
+    BackendFailed,
+    FirstTokenReceived,
+    SentenceReady,
+    ToolCalled,
+    ToolProgressed,
+    ToolReturned,
+    TurnEvent,
+    TurnFinished,
+    TurnStarted,
+)
+from robovoice.assistant.metrics import TurnMetrics
+from robovoice.assistant.prompt import SYSTEM_PROMPT
+from robovoice.assistant.robot_tools import RobotTools, ToolOutcome
+from robovoice.audio.sentences import SentenceSplitter
+from robovoice.errors import LLMError
+from robovoice.llm.base import (
+    ChatMessage,
+    ContentPart,
+    Finished,
+    LLMBackend,
+    TextDelta,
+    ToolCallRequested,
+    ToolSpec,
+)
+from robovoice.llm.failover import FALLBACK_MESSAGE
+
+log = logging.getLogger(__name__)
+
+Observer = Callable[[TurnEvent], Awaitable[None] | None]
+
+
+@dataclass(frozen=True, slots=True)
+class TurnResult:
+    reply: str
+    calls: tuple[ToolCalled, ...]
+    outcomes: tuple[ToolReturned, ...]
+    metrics: TurnMetrics
+    fell_back: bool = False
+
+
+class Assistant:
+    """A conversation with the robot's tools. One instance per conversation."""
+
+    def __init__(
+        self,
+        backend: LLMBackend,
+        tools: RobotTools,
+        *,
+        system_prompt: str = SYSTEM_PROMPT,
+        max_steps: int = 4,
+        max_history_messages: int = 12,
+        observer: Observer | None = None,
+        fallback_message: str = FALLBACK_MESSAGE,
+    ) -> None:
+        if max_steps < 1:
+            raise ValueError("max_steps must be at least 1")
+        self.backend = backend
+        self.tools = tools
+        self.system_prompt = system_prompt
+        self.max_steps = max_steps
+        self.max_history_messages = max_history_messages
+        self.fallback_message = fallback_message
+        self._observer = observer
+        self._history: list[ChatMessage] = []
+
+    def reset(self) -> None:
+        """Forget the conversation (a fresh one per evaluation case)."""
+        self._history.clear()
+
+    @property
+    def history(self) -> Sequence[ChatMessage]:
+        return tuple(self._history)
+
+    async def _emit(self, event: TurnEvent) -> None:
+        if self._observer is not None:
+            result = self._observer(event)
+            if inspect.isawaitable(result):
+                await result
+
+    async def turn(
+        self, user: str | tuple[ContentPart, ...], *, metrics: TurnMetrics | None = None
+    ) -> TurnResult:
+        """Run one user turn to its spoken reply."""
+        metrics = metrics or TurnMetrics()
+        user_message = ChatMessage("user", user)
+        await self._emit(TurnStarted(user_message.text))
+        messages = [ChatMessage("system", self.system_prompt), *self._history, user_message]
+        replies: list[str] = []
+        calls: list[ToolCalled] = []
+        outcomes: list[ToolReturned] = []
+        fell_back = False
+        steps = 0
+        for step in range(self.max_steps):
+            steps = step + 1
+            # On the last step the model gets no tools, so the turn ends with words, not a call.
+            specs: list[ToolSpec] = await self.tools.specs() if step < self.max_steps - 1 else []
+            try:
+                text, requested = await self._model_step(messages, specs, metrics)
+            except LLMError as exc:
+                log.warning("no LLM backend answered: %s", exc)
+                fell_back = True
+                await self._emit(BackendFailed(str(exc), self.fallback_message))
+                await self._say(self.fallback_message, metrics)
+                replies.append(self.fallback_message)
+                break
+            if text:
+                replies.append(text)
+            messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
+            if not requested:
+                break
+            for request in requested:
+                called, returned = await self._run_tool(request, metrics)
+                calls.append(called)
+                outcomes.append(returned)
+                messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
+        reply = " ".join(r.strip() for r in replies if r.strip())
+        if not fell_back:
+            self._remember(messages[1:])
+        metrics.mark("finished")
+        await self._emit(TurnFinished(reply, tuple(calls), steps))
+        return TurnResult(reply, tuple(calls), tuple(outcomes), metrics, fell_back)
+
+    async def _model_step(
+        self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics
+    ) -> tuple[str, list[ToolCallRequested]]:
+        splitter = SentenceSplitter()
+        text: list[str] = []
+        requested: list[ToolCallRequested] = []
+        started = time.perf_counter()
+        first = True
+        waited = 0.0  # time spent waiting on the model, excluding our own handling of its output
+        mark = started
+        async for event in self.backend.stream(messages, specs):
+            now = time.perf_counter()
+            waited += now - mark
+            if first:
+                first = False
+                metrics.mark("first_token")
+                await self._emit(FirstTokenReceived(self.backend.name))
+            match event:
+                case TextDelta(delta):
+                    text.append(delta)
+                    for sentence in splitter.feed(delta):
+                        await self._say(sentence, metrics)
+                case ToolCallRequested():
+                    requested.append(event)
+                case Finished():
+                    pass
+            mark = time.perf_counter()
+        metrics.model_ms += waited * 1000.0
+        rest = splitter.flush()
+        if rest:
+            await self._say(rest, metrics)
+        for i, request in enumerate(requested):
+            if not request.id:  # some servers omit ids; the history needs them to pair results
+                requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
+                                                 request.raw_arguments, request.arguments_error)
+        return "".join(text).strip(), requested
+
+    async def _say(self, sentence: str, metrics: TurnMetrics) -> None:
+        metrics.mark("first_sentence")
+        await self._emit(SentenceReady(sentence))
+
+    async def _run_tool(self, request: ToolCallRequested, metrics: TurnMetrics) -> tuple[ToolCalled, ToolReturned]:
+        called = ToolCalled(request.id, request.name, dict(request.arguments))
+        metrics.mark(f"tool_call:{request.name}")
+        await self._emit(called)
+        if request.arguments_error is not None:
+            body = {"error": "invalid_arguments", "message": request.arguments_error,
+                    "hint": "call the tool again with a JSON object of arguments", "details": {}}
+            outcome = ToolOutcome(json.dumps(body), True, 0.0)
+        else:
+            async def on_progress(progress: float, total: float | None, message: str | None) -> None:
+                await self._emit(ToolProgressed(request.name, progress, total, message or ""))
+
+            outcome = await self.tools.call(request.name, dict(request.arguments), on_progress)
+        metrics.tools_ms += outcome.duration_ms
+        metrics.mark(f"tool_result:{request.name}")
+        returned = ToolReturned(request.id, request.name, outcome.text, outcome.is_error, outcome.duration_ms)
+        await self._emit(returned)
+        return called, returned
+
+    def _remember(self, turn_messages: list[ChatMessage]) -> None:
+        """Keep a bounded history that starts at a user message (tool results stay paired)."""
+        history = [m if m.role != "user" else ChatMessage("user", m.text) for m in turn_messages]  # drop audio
+        history = history[-self.max_history_messages:]
+        while history and history[0].role != "user":
+            history.pop(0)
+        self._history = history

@@ -1,0 +1,67 @@
+"""Per-turn latency: timestamps of each stage, relative to the turn's start.
+
+The turn starts at end of speech (voice) or when the text arrives (chat). Stages:
+`transcript`, `first_token`, `tool_call:<name>` / `tool_result:<name>`, `first_sentence`,
+`first_audio`, `finished`. `model_ms` adds up the time spent waiting for the model, so the
+rest of a turn can be reported as our own overhead.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
+
+
+@dataclass
+class TurnMetrics:
+    clock: Callable[[], float] = time.perf_counter
+    start: float = field(default=0.0)
+    marks: dict[str, float] = field(default_factory=dict)
+    model_ms: float = 0.0
+    tools_ms: float = 0.0
+    stt_ms: float = 0.0
+    tts_ms: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not self.start:
+            self.start = self.clock()
+
+    def mark(self, stage: str, at: float | None = None) -> None:
+        """Record the first time `stage` happens (later marks of the same stage are ignored)."""
+        if stage not in self.marks:
+            self.marks[stage] = ((self.clock() if at is None else at) - self.start) * 1000.0
+
+    def as_dict(self) -> dict[str, float]:
+        out = {stage: round(ms, 1) for stage, ms in self.marks.items()}
+        out.update(model_ms=round(self.model_ms, 1), tools_ms=round(self.tools_ms, 1))
+        if self.stt_ms:
+            out["stt_ms"] = round(self.stt_ms, 1)
+        if self.tts_ms:
+            out["tts_ms"] = round(self.tts_ms, 1)
+        return out
+
+
+def percentile(values: list[float], q: float) -> float:
+    """Nearest-rank style percentile with linear interpolation (q in 0..100)."""
+    if not values:
+        raise ValueError("no values")
+    ordered = sorted(values)
+    rank = (len(ordered) - 1) * q / 100.0
+    low = int(rank)
+    high = min(low + 1, len(ordered) - 1)
+    return ordered[low] + (ordered[high] - ordered[low]) * (rank - low)
+
+
+def summarise(per_turn: Iterable[Mapping[str, float]]) -> dict[str, dict[str, float]]:
+    """p50/p95 per stage over many turns (stages missing from a turn are skipped)."""
+    by_stage: dict[str, list[float]] = {}
+    for turn in per_turn:
+        for stage, ms in turn.items():
+            if stage.startswith(("tool_call:", "tool_result:")):
+                stage = stage.split(":", 1)[0]
+            by_stage.setdefault(stage, []).append(ms)
+    return {
+        stage: {"p50": round(percentile(v, 50), 1), "p95": round(percentile(v, 95), 1), "n": len(v)}
+        for stage, v in sorted(by_stage.items())
+    }

@@ -1,0 +1,135 @@
+"""Configuration: one TOML file, read once at the edge and passed down frozen.
+
+This module and `environment()` are the only places that read environment variables.
+
+    # robovoice.toml
+    [robot]
+    robot = "sim"                        # the embedded simulated robot (default), or:
+    # middleware = "zenoh://127.0.0.1:7447"; manifests = "path/to/manifests"
+    # server = "http://robot.local:8765/mcp"; token_file = "~/.config/robovoice/robot.token"
+
+    [[llm.backends]]                     # tried in order each turn (failover)
+    url = "http://edge-server:8000/v1"   # any OpenAI-compatible server: vLLM, llama.cpp, Ollama, a cloud
+    model = "Qwen/Qwen3-Omni-30B-A3B-Instruct"
+    api_key_env = "EDGE_API_KEY"         # or api_key_file = "..."; never the key itself
+    accepts_audio = true
+
+    [[llm.backends]]
+    local = true                         # the embedded model (or model_path = "other.gguf")
+"""
+
+from __future__ import annotations
+
+import os
+import tomllib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from robovoice.errors import ConfigError
+
+
+class _Frozen(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class RobotConfig(_Frozen):
+    robot: str | None = None
+    middleware: str | None = None
+    manifests: Path | None = None
+    server: str | None = None
+    token_file: Path | None = None
+    sim_speed: float = Field(default=1.0, gt=0)
+
+
+class BackendConfig(_Frozen):
+    url: str | None = None
+    model: str | None = None
+    local: bool = False
+    model_path: Path | None = None
+    api_key_env: str | None = None
+    api_key_file: Path | None = None
+    accepts_audio: bool = False
+    connect_s: float | None = Field(default=None, gt=0)
+    first_token_s: float | None = Field(default=None, gt=0)
+    extra_body: dict[str, Any] = Field(default_factory=dict)
+
+    @model_validator(mode="after")
+    def _kind(self) -> BackendConfig:
+        if self.local == bool(self.url):
+            raise ValueError("each backend needs either `url` (an OpenAI-compatible server) or `local = true`")
+        return self
+
+
+class LLMConfig(_Frozen):
+    backends: tuple[BackendConfig, ...] = ()
+
+
+class VoiceConfig(_Frozen):
+    wake_model: str = "hey_jarvis"
+    wake_threshold: float = Field(default=0.5, gt=0, lt=1)
+    end_of_turn_silence_ms: int = Field(default=500, ge=100)
+    max_utterance_s: float = Field(default=15.0, gt=0)
+    follow_up_s: float = Field(default=6.0, ge=0)
+
+
+class Config(_Frozen):
+    robot: RobotConfig = Field(default_factory=RobotConfig)
+    llm: LLMConfig = Field(default_factory=LLMConfig)
+    voice: VoiceConfig = Field(default_factory=VoiceConfig)
+
+
+def load_config(path: Path | None) -> Config:
+    """Read a TOML config file (None: all defaults). Errors name the file and the field."""
+    if path is None:
+        return Config()
+    try:
+        raw = tomllib.loads(path.expanduser().read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ConfigError(f"cannot read config file {path}: {exc.strerror}") from exc
+    except tomllib.TOMLDecodeError as exc:
+        raise ConfigError(f"{path}: not valid TOML: {exc}") from exc
+    try:
+        return Config.model_validate(raw)
+    except ValidationError as exc:
+        problems = "; ".join(f"{'.'.join(str(p) for p in e['loc'])}: {e['msg']}" for e in exc.errors())
+        raise ConfigError(f"{path}: {problems}") from exc
+
+
+@dataclass(frozen=True, slots=True)
+class Environment:
+    """The environment variables robovoice reads, read once."""
+
+    cache_dir: Path
+    state_dir: Path
+    variables: Mapping[str, str]
+
+    def secret(self, name: str) -> str:
+        value = self.variables.get(name)
+        if not value:
+            raise ConfigError(f"environment variable {name} is not set (it should hold the API key)")
+        return value
+
+
+def environment(env: Mapping[str, str] | None = None) -> Environment:
+    env = os.environ if env is None else env
+    home = Path(env.get("HOME", str(Path.home())))
+    cache = env.get("ROBOVOICE_CACHE_DIR") or str(Path(env.get("XDG_CACHE_HOME") or home / ".cache") / "robovoice")
+    state = env.get("ROBOVOICE_STATE_DIR") or str(
+        Path(env.get("XDG_STATE_HOME") or home / ".local" / "state") / "robovoice")
+    return Environment(Path(cache), Path(state), dict(env))
+
+
+def read_api_key(backend: BackendConfig, env: Environment) -> str | None:
+    """The API key of a backend from its env var or file; None when it needs none."""
+    if backend.api_key_file is not None:
+        try:
+            return backend.api_key_file.expanduser().read_text(encoding="utf-8").strip()
+        except OSError as exc:
+            raise ConfigError(f"cannot read API key file {backend.api_key_file}: {exc.strerror}") from exc
+    if backend.api_key_env is not None:
+        return env.secret(backend.api_key_env)
+    return None
