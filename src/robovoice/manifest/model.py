@@ -25,10 +25,10 @@ class ToolAnnotations(_Strict):
     """MCP tool annotations (hints for clients; the server does not enforce them)."""
 
     title: str | None = None
-    readOnlyHint: bool | None = None  # noqa: N815  (MCP's field names)
-    destructiveHint: bool | None = None  # noqa: N815
-    idempotentHint: bool | None = None  # noqa: N815
-    openWorldHint: bool | None = None  # noqa: N815
+    readOnlyHint: bool | None = None  # camelCase: MCP's field names
+    destructiveHint: bool | None = None
+    idempotentHint: bool | None = None
+    openWorldHint: bool | None = None
 
 
 class ToolDecl(_Strict):
