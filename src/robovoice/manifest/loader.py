@@ -163,11 +163,12 @@ def load_manifest_file(path: str | Path) -> Manifest:
 
 
 def manifest_files(root: str | Path) -> list[tuple[str, Path]]:
-    """``(node name, path)`` of every manifest in the folder layout, sorted by path."""
+    """``(node name, path)`` of every manifest in the folder layout, by node name;
+    for one node, ``<node>/mcp.json`` comes before ``<node>.mcp.json``."""
     base = Path(root)
-    found = [(p.parent.name, p) for p in base.glob(f"*/{MANIFEST_FILE}") if p.is_file()]
-    found += [(p.name[: -len(MANIFEST_SUFFIX)], p) for p in base.glob(f"*{MANIFEST_SUFFIX}") if p.is_file()]
-    return sorted(found, key=lambda item: str(item[1]))
+    folders = sorted((p.parent.name, p) for p in base.glob(f"*/{MANIFEST_FILE}") if p.is_file())
+    files = sorted((p.name[: -len(MANIFEST_SUFFIX)], p) for p in base.glob(f"*{MANIFEST_SUFFIX}") if p.is_file())
+    return sorted(folders + files, key=lambda item: item[0])  # stable: folder form first
 
 
 def load_manifest_dir(root: str | Path) -> ManifestSet:
