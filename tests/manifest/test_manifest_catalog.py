@@ -20,8 +20,10 @@ def node(name: str, *tools: ToolEntry, snaps: tuple[SnapshotEntry, ...] = ()) ->
 
 def test_union_sorted_by_name() -> None:
     catalog = ToolCatalog()
-    assert catalog.update("nav", node("nav", tool("navigate_to", "nav"), tool("cancel_navigation", "nav", index=1)))
-    assert catalog.update("base", node("base", tool("stop_robot", "base"), snaps=(snap("get_battery_state", "base"),)))
+    nav = node("nav", tool("navigate_to", "nav"), tool("cancel_navigation", "nav", index=1))
+    base = node("base", tool("stop_robot", "base"), snaps=(snap("get_battery_state", "base"),))
+    assert catalog.update("nav", nav)
+    assert catalog.update("base", base)
     assert [t.name for t in catalog.tools()] == ["cancel_navigation", "get_battery_state", "navigate_to",
                                                  "stop_robot"]
     assert len(catalog) == 4 and "stop_robot" in catalog

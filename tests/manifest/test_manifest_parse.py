@@ -48,7 +48,8 @@ def test_empty_file_is_malformed() -> None:
 
 
 def test_nan_is_rejected() -> None:
-    error = only('{"node": "n", "snapshots": [{"name": "a", "topic": "t", "description": "d", "max_age_s": NaN}]}')
+    snap = '{"name": "a", "topic": "t", "description": "d", "max_age_s": NaN}'
+    error = only('{"node": "n", "snapshots": [' + snap + "]}")
     assert "NaN" in error.message
 
 

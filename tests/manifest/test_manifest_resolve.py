@@ -34,7 +34,7 @@ def test_good_manifest_resolves(nav: dict[str, Any], nav_info: NodeInfo) -> None
     assert result.errors == ()
     assert [e.name for e in result.entries] == ["navigate_to", "return_to_dock", "cancel_navigation",
                                                 "get_robot_pose"]
-    go, dock, cancel = result.tools
+    go, _, cancel = result.tools
     assert (go.node, go.rpc, go.kind, go.timeout_s, go.source, go.path) == (
         "navigation", "navigate", "action", 300.0, SRC, "$.tools[0]")
     assert (cancel.kind, cancel.timeout_s) == ("rpc", 10.0)

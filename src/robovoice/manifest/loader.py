@@ -167,7 +167,9 @@ def manifest_files(root: str | Path) -> list[tuple[str, Path]]:
     for one node, ``<node>/mcp.json`` comes before ``<node>.mcp.json``."""
     base = Path(root)
     folders = sorted((p.parent.name, p) for p in base.glob(f"*/{MANIFEST_FILE}") if p.is_file())
-    files = sorted((p.name[: -len(MANIFEST_SUFFIX)], p) for p in base.glob(f"*{MANIFEST_SUFFIX}") if p.is_file())
+    files = sorted(
+        (p.name[: -len(MANIFEST_SUFFIX)], p) for p in base.glob(f"*{MANIFEST_SUFFIX}") if p.is_file()
+    )
     return sorted(folders + files, key=lambda item: item[0])  # stable: folder form first
 
 

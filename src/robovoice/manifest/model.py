@@ -24,11 +24,18 @@ class _Strict(BaseModel):
 class ToolAnnotations(_Strict):
     """MCP tool annotations (hints for clients; the server does not enforce them)."""
 
-    title: str | None = None
-    readOnlyHint: bool | None = None  # camelCase: MCP's field names
-    destructiveHint: bool | None = None
-    idempotentHint: bool | None = None
-    openWorldHint: bool | None = None
+    title: str | None = Field(default=None, description="human-readable title of the tool")
+    # camelCase: MCP's own field names
+    readOnlyHint: bool | None = Field(default=None, description="the tool does not change anything")
+    destructiveHint: bool | None = Field(
+        default=None, description="the tool may undo or destroy something (meaningful when not read-only)"
+    )
+    idempotentHint: bool | None = Field(
+        default=None, description="calling it again with the same arguments has no further effect"
+    )
+    openWorldHint: bool | None = Field(
+        default=None, description="the tool acts on the world outside (for a robot: it moves or talks)"
+    )
 
 
 class ToolDecl(_Strict):
@@ -36,17 +43,20 @@ class ToolDecl(_Strict):
 
     name: str = Field(pattern=TOOL_NAME_PATTERN, description="LLM-facing tool name")
     rpc: str = Field(min_length=1, description="the node's RPC or action this tool calls")
-    description: str = Field(min_length=1)
+    description: str = Field(min_length=1, description="what the tool does, for the model")
     parameters: dict[str, Any] = Field(
         default_factory=lambda: dict(EMPTY_OBJECT_SCHEMA),
         description="JSON Schema (2020-12) of the arguments object the model passes",
+        json_schema_extra={"required": ["type"], "properties": {"type": {"const": "object"}}},
     )
     defaults: dict[str, Any] = Field(
         default_factory=dict,
         description="arguments always passed to the RPC; a key not in `parameters` is fixed "
         "(hidden from the model), a key in `parameters` is a default the model may override",
     )
-    annotations: ToolAnnotations = Field(default_factory=ToolAnnotations)
+    annotations: ToolAnnotations = Field(
+        default_factory=ToolAnnotations, description="MCP tool annotations (hints for clients)"
+    )
     timeout_s: float | None = Field(
         default=None, gt=0, description="call timeout; default 10 s for RPCs, 300 s for actions"
     )
@@ -55,17 +65,19 @@ class ToolDecl(_Strict):
 class SnapshotDecl(_Strict):
     """A topic exposed as a read-only snapshot tool returning the latest message."""
 
-    name: str = Field(pattern=TOOL_NAME_PATTERN)
-    topic: str = Field(min_length=1)
-    description: str = Field(min_length=1)
+    name: str = Field(pattern=TOOL_NAME_PATTERN, description="LLM-facing tool name")
+    topic: str = Field(min_length=1, description="the topic the node publishes")
+    description: str = Field(min_length=1, description="what the snapshot tells, for the model")
     max_age_s: float = Field(gt=0, description="older than this, the snapshot is flagged stale")
 
 
 class Manifest(_Strict):
     """One node's manifest."""
 
-    schema_: str | None = Field(default=None, alias="$schema")
+    schema_: str | None = Field(
+        default=None, alias="$schema", description="optional: the JSON Schema of this format, for editors"
+    )
     node: str = Field(min_length=1, description="the middleware node this manifest describes")
-    description: str = ""
-    tools: tuple[ToolDecl, ...] = ()
-    snapshots: tuple[SnapshotDecl, ...] = ()
+    description: str = Field(default="", description="free text about the node (not shown to the model)")
+    tools: tuple[ToolDecl, ...] = Field(default=(), description="RPCs and actions exposed as tools")
+    snapshots: tuple[SnapshotDecl, ...] = Field(default=(), description="topics exposed as snapshot tools")
