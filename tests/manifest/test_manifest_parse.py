@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from types import MappingProxyType
 from typing import Any
 
 import pytest
@@ -147,9 +148,24 @@ def test_invalid_parameters_schema(nav: dict[str, Any]) -> None:
     nav["tools"][0]["parameters"]["properties"]["target"]["type"] = "strin"
     error = only(nav)
     assert error.path == "$.tools[0].parameters.properties.target.type"
-    assert error.message.startswith("invalid JSON Schema:")
-    assert "strin" in error.message
+    assert error.message == "invalid JSON Schema: 'strin' is not a JSON Schema type"
+    assert "did you mean 'string'?" in error.fix
+
+
+def test_invalid_parameters_schema_in_general(nav: dict[str, Any]) -> None:
+    nav["tools"][0]["parameters"]["properties"]["target"]["minLength"] = -1
+    error = only(nav)
+    assert error.path == "$.tools[0].parameters.properties.target.minLength"
+    assert error.message == "invalid JSON Schema: -1 is less than the minimum of 0"
     assert "draft 2020-12" in error.fix
+
+
+def test_entries_must_be_objects(nav: dict[str, Any]) -> None:
+    nav["tools"][1] = "return_to_dock"
+    error = only(nav)
+    assert error.path == "$.tools[1]"
+    assert error.message == "each entry of 'tools' must be an object, got a string ('return_to_dock')"
+    assert '"rpc"' in error.fix
 
 
 @pytest.mark.parametrize(("params", "got"), [({"type": "array"}, "'type': 'array'"), ({}, "no 'type'")])
@@ -238,6 +254,11 @@ def test_validate_manifest_takes_parsed_json(nav: dict[str, Any]) -> None:
     with pytest.raises(ManifestErrors) as caught:
         validate_manifest(nav, "announced by navigation")
     assert caught.value.source == "announced by navigation"
+
+
+def test_validate_manifest_takes_any_mapping(nav: dict[str, Any]) -> None:
+    frozen = MappingProxyType({**nav, "tools": tuple(MappingProxyType(t) for t in nav["tools"])})
+    assert len(validate_manifest(frozen, "announced").tools) == 3
 
 
 def test_validate_manifest_rejects_non_json_values(nav: dict[str, Any]) -> None:

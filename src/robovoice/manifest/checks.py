@@ -20,6 +20,7 @@ from jsonschema.exceptions import SchemaError, ValidationError
 from robovoice.errors import ManifestError
 from robovoice.manifest.errors import Loc, did_you_mean, json_path, nearest
 
+JSON_TYPES = ("string", "number", "integer", "boolean", "object", "array", "null")
 SCHEMA_EXAMPLE = '{"type": "object", "properties": {"target": {"type": "string"}}, "required": ["target"]}'
 
 
@@ -100,6 +101,12 @@ def schema_errors(params: Mapping[str, Any], ploc: Loc, source: str) -> list[Man
         Draft202012Validator.check_schema(params)
     except SchemaError as exc:
         where = json_path((*ploc, *exc.path))
+        if exc.path and exc.path[-1] == "type" and isinstance(exc.instance, str):
+            guess = nearest(exc.instance, JSON_TYPES)
+            return [ManifestError(
+                source, where, f"invalid JSON Schema: {exc.instance!r} is not a JSON Schema type",
+                (f"did you mean {guess!r}? " if guess else "") + f"use one of: {', '.join(JSON_TYPES)}",
+            )]
         return [ManifestError(
             source, where, f"invalid JSON Schema: {exc.message}",
             f"write a valid JSON Schema (draft 2020-12), e.g. {SCHEMA_EXAMPLE}",

@@ -75,7 +75,7 @@ def validate_manifest(data: object, source: str) -> Manifest:
     if isinstance(data, Manifest):
         return data
     try:
-        text = json.dumps(data, allow_nan=False)
+        text = json.dumps(data, allow_nan=False, default=_mapping_as_dict)
     except (TypeError, ValueError) as exc:
         raise ManifestErrors([ManifestError(
             source, "$", f"the manifest is not plain JSON: {exc}",
@@ -91,6 +91,12 @@ def validate_manifest(data: object, source: str) -> Manifest:
     if errors or manifest is None:
         raise ManifestErrors(errors)
     return manifest
+
+
+def _mapping_as_dict(value: object) -> object:
+    if isinstance(value, Mapping):
+        return dict(value)
+    raise TypeError(f"{type(value).__name__} is not a JSON value")
 
 
 class _Pairs(dict[str, Any]):

@@ -25,6 +25,11 @@ _EXPECTED = {
     "model_attributes_type": "an object",
 }
 
+_EXAMPLES = {
+    "tools": '{"name": "stop_robot", "rpc": "stop", "description": "Stop all motion now."}',
+    "snapshots": '{"name": "get_battery_state", "topic": "battery", "description": "...", "max_age_s": 5}',
+}
+
 _SUB_MODELS: dict[tuple[type[BaseModel], str], type[BaseModel]] = {
     (Manifest, "tools"): ToolDecl,
     (Manifest, "snapshots"): SnapshotDecl,
@@ -96,6 +101,12 @@ def _one(err: ErrorDetails, source: str) -> ManifestError:
             return ManifestError(
                 source, path, f"a manifest must be a JSON object, got {describe_json(value)}",
                 'write {"node": "<node name>", "tools": [...], "snapshots": [...]}',
+            )
+        if isinstance(field, int) and len(loc) >= 2:
+            return ManifestError(
+                source, path, f"each entry of {loc[-2]!r} must be {expected}, got {describe_json(value)}",
+                f"write {_describe_model(model_at(loc))} as a JSON object, "
+                f"e.g. {_EXAMPLES.get(str(loc[-2]), '{}')}",
             )
         return ManifestError(
             source, path, f"{field!r} must be {expected}, got {describe_json(value)}",
