@@ -179,3 +179,8 @@ def test_broken_override_is_reported_not_skipped(tmp_path: Path, nav: dict[str, 
     result = surface_for(info, folder)
     assert result.entries == ()
     assert result.source == str(tmp_path / "navigation.mcp.json")
+
+
+def test_entries_are_hashable(nav: dict[str, Any], nav_info: NodeInfo) -> None:
+    result = surface(nav, nav_info)
+    assert len(set(result.entries)) == 4

@@ -20,9 +20,9 @@ from typing import Any
 from pydantic import ValidationError
 
 from robovoice.errors import ManifestError
-from robovoice.manifest.checks import semantic_errors
 from robovoice.manifest.errors import ManifestErrors, json_path, sort_errors
 from robovoice.manifest.model import Manifest
+from robovoice.manifest.rules import semantic_errors
 from robovoice.manifest.validation import translate
 
 MANIFEST_FILE = "mcp.json"

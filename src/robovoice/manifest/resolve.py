@@ -33,15 +33,18 @@ SNAPSHOT_ANNOTATIONS = ToolAnnotations(
 
 @dataclass(frozen=True, slots=True)
 class ToolEntry:
-    """An MCP tool that calls one RPC or action of one node."""
+    """An MCP tool that calls one RPC or action of one node.
+
+    `input_schema` and `defaults` are shared: treat them as read-only. Hashable (the two
+    dicts are left out of the hash)."""
 
     name: str
     node: str
     rpc: str
     kind: RpcKind
     description: str
-    input_schema: dict[str, Any]
-    defaults: dict[str, JSON]
+    input_schema: dict[str, Any] = field(hash=False)
+    defaults: dict[str, JSON] = field(hash=False)
     annotations: ToolAnnotations
     timeout_s: float
     source: str
