@@ -97,3 +97,9 @@ def test_not_a_folder(tmp_path: Path) -> None:
     loaded = load_manifest_dir(tmp_path / "missing")
     assert not loaded.ok
     assert "not a folder" in loaded.errors[0].message
+
+
+def test_byte_order_mark_is_tolerated(tmp_path: Path, nav: dict[str, Any]) -> None:
+    path = tmp_path / "navigation.mcp.json"
+    path.write_bytes(b"\xef\xbb\xbf" + json.dumps(nav).encode())
+    assert load_manifest_file(path).node == "navigation"

@@ -160,7 +160,7 @@ def load_manifest_file(path: str | Path) -> Manifest:
     """Read and validate one manifest file. Raises `ManifestErrors` naming the file."""
     source = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = Path(path).read_text(encoding="utf-8-sig")  # tolerate a BOM
     except (OSError, UnicodeDecodeError) as exc:
         raise ManifestErrors([ManifestError(
             source, "$", f"cannot read the manifest: {exc}", "check that the file exists and is UTF-8 text",
