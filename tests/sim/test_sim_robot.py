@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import asyncio
 import base64
+from collections.abc import Mapping
 from typing import Any
 
 import pytest
 from sim_testkit import BOUND_S, StartRobot
 
 from robovoice.errors import ConfigError, NodeUnavailableError
+from robovoice.middleware.base import ActionHandler, NodeHost, NodeInfo, RpcHandler
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim import NODE_NAMES, SETUP_NAMES, SimRobot, run_sim_forever, start_sim_robot
 
@@ -134,3 +136,39 @@ async def test_topic_payloads(start: StartRobot, make_inbox: Any) -> None:
     assert jpeg[:2] == b"\xff\xd8" and jpeg[-2:] == b"\xff\xd9"
     battery = (await (await make_inbox("battery", robot.clock)).wait_count(1))[0].value
     assert isinstance(battery["percent"], float) and isinstance(battery["charging"], bool)
+
+
+class _BrokenHost:
+    """A node host whose `publish` fails, as a broken transport would."""
+
+    def __init__(self, host: NodeHost) -> None:
+        self._host = host
+
+    @property
+    def info(self) -> NodeInfo:
+        return self._host.info
+
+    def publish(self, topic: str, value: Any, stamp: float | None = None) -> None:
+        raise RuntimeError(f"cannot publish {topic}")
+
+    async def leave(self) -> None:
+        await self._host.leave()
+
+
+class _BrokenPublishing(MemoryMiddleware):
+    async def host(self, info: NodeInfo, rpcs: Mapping[str, RpcHandler],
+                   actions: Mapping[str, ActionHandler]) -> Any:
+        return _BrokenHost(await super().host(info, rpcs, actions))
+
+
+async def test_a_failing_node_loop_is_reported_not_swallowed() -> None:
+    bus = _BrokenPublishing()
+    robot = await start_sim_robot(bus, speed=40, nodes=["localization", "projector"])
+    with pytest.raises(ExceptionGroup) as err:
+        await asyncio.wait_for(robot.wait(), BOUND_S)
+    assert "cannot publish pose" in str(err.value.exceptions[0])
+    assert robot.failure is err.value
+    # the RPCs still answer; stop still withdraws the nodes
+    assert await bus.call("projector", "get_state", {}, timeout=1) == {"on": False}
+    await robot.stop()
+    assert bus.nodes() == {}

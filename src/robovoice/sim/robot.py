@@ -14,7 +14,6 @@ RPCs over the middleware, never through MCP.
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import logging
 from collections.abc import Callable, Collection
 from dataclasses import dataclass
@@ -171,8 +170,7 @@ class SimRobot:
         for task in (self._setup_drive, self._supervisor):
             if task is not None and not task.done():
                 task.cancel()
-                with contextlib.suppress(asyncio.CancelledError, RobotFailure):
-                    await task
+                await asyncio.wait([task])  # its outcome is logged by its done callback
         await self._leave()
         log.info("sim robot stopped")
 
@@ -222,8 +220,7 @@ class SimRobot:
     async def _setup_driving(self) -> None:
         if self._setup_drive is not None and not self._setup_drive.done():
             self._setup_drive.cancel()
-            with contextlib.suppress(asyncio.CancelledError, RobotFailure):
-                await self._setup_drive
+            await asyncio.wait([self._setup_drive])  # its outcome is logged by its done callback
         target = self._far_place()
         under_way = asyncio.Event()
 
@@ -265,8 +262,7 @@ class SimRobot:
                 if failure.code != harmless:
                     raise
         if self._setup_drive is not None:
-            with contextlib.suppress(asyncio.CancelledError, RobotFailure):
-                await self._setup_drive
+            await asyncio.wait([self._setup_drive], timeout=SETUP_WAIT_S)  # ended by the cancel above
             self._setup_drive = None
 
 
