@@ -1,0 +1,297 @@
+"""WAV files as audio sources and sinks, and an in-memory sink: the fakes of the I/O seams.
+
+Integer PCM WAV (8/16/24/32-bit) is read with the standard library; other encodings
+(32/64-bit float, A-law, and whatever else libsndfile reads) need `soundfile` (in the
+``robovoice[voice]`` extra). Everything is delivered as int16.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import wave
+from collections.abc import AsyncIterator, Iterator
+from pathlib import Path
+from types import TracebackType
+
+import numpy as np
+
+from robovoice.audio.format import AudioChunk, AudioFormat, Int16Array, as_int16, concat, float32_to_int16
+from robovoice.errors import AudioError, MissingDependencyError
+
+logger = logging.getLogger(__name__)
+
+_INSTALL = "pip install 'robovoice[voice]'"
+
+
+# --- reading ----------------------------------------------------------------------------
+
+
+def _pcm_to_int16(raw: bytes, sampwidth: int, channels: int) -> Int16Array:
+    if sampwidth == 1:  # unsigned 8-bit
+        out = (np.frombuffer(raw, dtype=np.uint8).astype(np.int16) - 128) << 8
+    elif sampwidth == 2:
+        out = np.frombuffer(raw, dtype="<i2").astype(np.int16)
+    elif sampwidth == 3:
+        b = np.frombuffer(raw, dtype=np.uint8).reshape(-1, 3)
+        out = ((b[:, 2].astype(np.int8).astype(np.int16) << 8) | b[:, 1].astype(np.int16)).astype(np.int16)
+    elif sampwidth == 4:
+        out = (np.frombuffer(raw, dtype="<i4") >> 16).astype(np.int16)
+    else:
+        raise AudioError(f"unsupported PCM sample width {sampwidth}")
+    return out.reshape(-1, channels) if channels > 1 else out
+
+
+_PCM = 1
+_EXTENSIBLE = 0xFFFE
+
+
+def _wav_format_tag(path: Path) -> int | None:
+    """The format tag of a RIFF/WAVE file (1 = integer PCM; for WAVE_FORMAT_EXTENSIBLE the
+    sub-format's), or None when the file is not RIFF/WAVE."""
+    try:
+        with path.open("rb") as f:
+            head = f.read(12)
+            if len(head) < 12 or head[:4] != b"RIFF" or head[8:12] != b"WAVE":
+                return None
+            while True:
+                hdr = f.read(8)
+                if len(hdr) < 8:
+                    return None
+                size = int.from_bytes(hdr[4:8], "little")
+                if hdr[:4] == b"fmt ":
+                    fmt = f.read(size)
+                    tag = int.from_bytes(fmt[0:2], "little")
+                    if tag == _EXTENSIBLE and len(fmt) >= 26:
+                        tag = int.from_bytes(fmt[24:26], "little")
+                    return tag
+                f.seek(size + (size & 1), 1)
+    except OSError as exc:
+        raise AudioError(f"cannot open WAV file {path}: {exc}") from exc
+
+
+def _iter_wav(path: Path, frames_per_read: int) -> tuple[AudioFormat, int, Iterator[Int16Array]]:
+    """(format as int16, total frames, iterator of int16 blocks) for any readable WAV."""
+    if _wav_format_tag(path) != _PCM:
+        return _iter_soundfile(path, frames_per_read)
+    try:
+        wf = wave.open(str(path), "rb")  # noqa: SIM115 (closed by the generator below)
+    except (wave.Error, EOFError) as exc:
+        raise AudioError(f"cannot read WAV file {path}: {exc}") from exc
+    fmt = AudioFormat(rate=wf.getframerate(), width=2, channels=wf.getnchannels())
+    total = wf.getnframes()
+
+    def blocks() -> Iterator[Int16Array]:
+        with wf:
+            while True:
+                raw = wf.readframes(frames_per_read)
+                if not raw:
+                    return
+                yield _pcm_to_int16(raw, wf.getsampwidth(), fmt.channels)
+
+    return fmt, total, blocks()
+
+
+def _iter_soundfile(path: Path, frames_per_read: int) -> tuple[AudioFormat, int, Iterator[Int16Array]]:
+    try:
+        import soundfile as sf
+    except ImportError as exc:  # also OSError when libsndfile is missing
+        raise MissingDependencyError(f"reading non-PCM WAV file {path}", _INSTALL) from exc
+    try:
+        info = sf.info(str(path))
+    except RuntimeError as exc:  # soundfile.LibsndfileError derives from RuntimeError
+        raise AudioError(f"cannot read audio file {path}: {exc}") from exc
+    fmt = AudioFormat(rate=int(info.samplerate), width=2, channels=int(info.channels))
+
+    def blocks() -> Iterator[Int16Array]:
+        # read as float and convert here: libsndfile does not scale float data read as int
+        for block in sf.blocks(str(path), blocksize=frames_per_read, dtype="float32", always_2d=False):
+            yield float32_to_int16(block)
+
+    return fmt, int(info.frames), blocks()
+
+
+def read_wav(path: str | Path) -> AudioChunk:
+    """A whole WAV file as one int16 chunk in the file's rate and channel count."""
+    fmt, _, blocks = _iter_wav(Path(path), 1 << 16)
+    parts = list(blocks)
+    if not parts:
+        shape: tuple[int, ...] = (0,) if fmt.channels == 1 else (0, fmt.channels)
+        return AudioChunk(np.zeros(shape, dtype=np.int16), fmt)
+    return AudioChunk(np.concatenate(parts), fmt)
+
+
+def write_wav(path: str | Path, chunk: AudioChunk) -> None:
+    """Write a chunk as 16-bit PCM WAV (float samples are converted)."""
+    with WavWriter(Path(path), chunk.format) as w:
+        w.write(chunk)
+
+
+class WavWriter:
+    """Synchronous 16-bit PCM WAV writer for one format."""
+
+    def __init__(self, path: Path, fmt: AudioFormat) -> None:
+        self.format = fmt
+        try:
+            self._wf = wave.open(str(path), "wb")  # noqa: SIM115 (closed in close())
+        except OSError as exc:
+            raise AudioError(f"cannot create WAV file {path}: {exc}") from exc
+        self._wf.setnchannels(fmt.channels)
+        self._wf.setsampwidth(2)
+        self._wf.setframerate(fmt.rate)
+
+    def write(self, chunk: AudioChunk) -> None:
+        if (chunk.format.rate, chunk.format.channels) != (self.format.rate, self.format.channels):
+            raise AudioError(f"WAV file is {self.format}, got a chunk in {chunk.format}; convert it first")
+        self._wf.writeframes(np.ascontiguousarray(as_int16(chunk.samples), dtype="<i2").tobytes())
+
+    def close(self) -> None:
+        self._wf.close()
+
+    def __enter__(self) -> WavWriter:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+# --- source ------------------------------------------------------------------------------
+
+
+class WavSource:
+    """Yields a WAV file as int16 chunks of `chunk_frames` frames (the last may be shorter).
+
+    Timestamps start at `start_timestamp` and follow the sample count. By default chunks
+    come as fast as they are consumed; ``realtime=True`` paces them like a microphone.
+    """
+
+    def __init__(
+        self,
+        path: str | Path,
+        *,
+        chunk_frames: int = 1024,
+        realtime: bool = False,
+        start_timestamp: float = 0.0,
+    ) -> None:
+        if chunk_frames <= 0:
+            raise AudioError(f"chunk_frames must be positive, got {chunk_frames}")
+        self.path = Path(path)
+        self._chunk_frames = chunk_frames
+        self._realtime = realtime
+        self._t0 = start_timestamp
+        self._format, self._total, self._blocks = _iter_wav(self.path, chunk_frames)
+        self._closed = False
+        self._iterated = False
+
+    @property
+    def format(self) -> AudioFormat:
+        return self._format
+
+    @property
+    def duration_s(self) -> float:
+        return self._total / self._format.rate
+
+    def __aiter__(self) -> AsyncIterator[AudioChunk]:
+        if self._iterated:
+            raise AudioError(f"WavSource({self.path}) can be iterated once; create a new one")
+        self._iterated = True
+        return self._chunks()
+
+    async def _chunks(self) -> AsyncIterator[AudioChunk]:
+        loop = asyncio.get_running_loop()
+        started = loop.time()
+        frames = 0
+        for block in self._blocks:
+            if self._closed:
+                break
+            chunk = AudioChunk(block, self._format, self._t0 + frames / self._format.rate)
+            frames += chunk.num_frames
+            if self._realtime:
+                # a chunk is "captured" once its last sample has been spoken
+                delay = started + frames / self._format.rate - loop.time()
+                if delay > 0:
+                    await asyncio.sleep(delay)
+            yield chunk
+            if not self._realtime:
+                await asyncio.sleep(0)  # let other tasks run, as a real device would
+        logger.debug("WAV source %s ended after %d frames", self.path, frames)
+
+    async def aclose(self) -> None:
+        self._closed = True
+
+
+# --- sinks -------------------------------------------------------------------------------
+
+
+class WavSink:
+    """Writes whatever it is given to a 16-bit WAV file; the format comes from the first
+    chunk unless given. Nothing is queued, so `stop()` only counts barge-ins."""
+
+    def __init__(self, path: str | Path, fmt: AudioFormat | None = None) -> None:
+        self.path = Path(path)
+        self._format = fmt
+        self._writer: WavWriter | None = WavWriter(self.path, fmt) if fmt is not None else None
+        self.stop_count = 0
+        self.frames_written = 0
+
+    async def write(self, chunk: AudioChunk) -> None:
+        if self._writer is None:
+            self._format = chunk.format
+            self._writer = WavWriter(self.path, chunk.format)
+        self._writer.write(chunk)
+        self.frames_written += chunk.num_frames
+
+    async def drain(self) -> None:
+        return None
+
+    def stop(self) -> None:
+        self.stop_count += 1
+
+    async def aclose(self) -> None:
+        if self._writer is None:  # nothing written: still leave a valid (empty) file
+            self._writer = WavWriter(self.path, self._format or AudioFormat(16000))
+        self._writer.close()
+
+    async def __aenter__(self) -> WavSink:
+        return self
+
+    async def __aexit__(
+        self, exc_type: type[BaseException] | None, exc: BaseException | None, tb: TracebackType | None
+    ) -> None:
+        await self.aclose()
+
+
+class MemorySink:
+    """Keeps every chunk written, for tests; `stop()` calls are counted and recorded as the
+    number of chunks written before each stop (so a test can see where barge-in cut in)."""
+
+    def __init__(self) -> None:
+        self.chunks: list[AudioChunk] = []
+        self.stops: list[int] = []
+        self.closed = False
+
+    async def write(self, chunk: AudioChunk) -> None:
+        if self.closed:
+            raise AudioError("write to a closed MemorySink")
+        self.chunks.append(chunk)
+
+    async def drain(self) -> None:
+        return None
+
+    def stop(self) -> None:
+        self.stops.append(len(self.chunks))
+
+    async def aclose(self) -> None:
+        self.closed = True
+
+    @property
+    def stop_count(self) -> int:
+        return len(self.stops)
+
+    def audio(self) -> AudioChunk:
+        """Everything written, joined (raises AudioError when nothing was written)."""
+        return concat(self.chunks)
+
+    @property
+    def duration_s(self) -> float:
+        return sum(c.duration_s for c in self.chunks)
