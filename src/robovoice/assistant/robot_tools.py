@@ -83,7 +83,9 @@ class RobotTools:
             log.info("robot offers %d tools", len(self._specs))
         return self._specs
 
-    async def call(self, name: str, arguments: dict[str, Any], on_progress: ProgressCallback | None = None) -> ToolOutcome:
+    async def call(
+        self, name: str, arguments: dict[str, Any], on_progress: ProgressCallback | None = None
+    ) -> ToolOutcome:
         start = time.perf_counter()
         try:
             result = await self.client.call_tool(

@@ -15,6 +15,7 @@ import importlib.util
 import logging
 import math
 import os
+import re
 import threading
 import time
 from dataclasses import dataclass
@@ -46,6 +47,18 @@ class Transcriber(Protocol):
     """Blocking speech-to-text of one utterance (any format; converted to 16 kHz mono)."""
 
     def transcribe(self, audio: AudioChunk) -> Transcript: ...
+
+
+def strip_wake_phrase(text: str, phrase: str = "hey jarvis") -> str:
+    """Remove the wake phrase (and punctuation after it) from the start of a transcript:
+    "Hey, Jarvis, turn on the projector." -> "turn on the projector." The words before the
+    last one are optional ("Jarvis, stop." -> "stop.")."""
+    words = [re.escape(w) for w in phrase.lower().split()]
+    if not words:
+        return text.strip()
+    optional = "".join(rf"(?:{w}\W+)?" for w in words[:-1])
+    pattern = rf"^\W*{optional}{words[-1]}\b[\s,.!?;:-]*"
+    return re.sub(pattern, "", text.strip(), count=1, flags=re.IGNORECASE)
 
 
 def _to_model_input(audio: AudioChunk) -> np.ndarray:
