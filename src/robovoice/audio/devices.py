@@ -123,9 +123,7 @@ class MicrophoneSource:
         def on_chunk(chunk: AudioChunk) -> None:
             if queue.qsize() >= self._max_queued:
                 self.dropped_chunks += 1
-                logger.warning(
-                    "microphone consumer too slow: dropped a chunk (%d so far)", self.dropped_chunks
-                )
+                logger.warning("microphone consumer too slow: dropped a chunk (%d so far)", self.dropped_chunks)
                 return
             queue.put_nowait(chunk)
 

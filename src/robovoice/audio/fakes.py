@@ -77,9 +77,7 @@ class ToneSynthesizer:
     """Speaks nothing but a soft tone, `seconds_per_char` long per character of text, one
     chunk per call (the sentence splitting is the caller's); 22 050 Hz like Piper."""
 
-    def __init__(
-        self, seconds_per_char: float = 0.05, frequency: float = 440.0, rate: int = _PIPER_RATE
-    ) -> None:
+    def __init__(self, seconds_per_char: float = 0.05, frequency: float = 440.0, rate: int = _PIPER_RATE) -> None:
         self._format = AudioFormat(rate=rate, width=2, channels=1)
         self._spc = seconds_per_char
         self._freq = frequency

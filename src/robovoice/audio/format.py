@@ -65,9 +65,7 @@ class AudioFormat:
     def seconds(self, frames: int) -> float:
         return frames / self.rate
 
-    def with_(
-        self, *, rate: int | None = None, width: int | None = None, channels: int | None = None
-    ) -> AudioFormat:
+    def with_(self, *, rate: int | None = None, width: int | None = None, channels: int | None = None) -> AudioFormat:
         return AudioFormat(
             rate=self.rate if rate is None else rate,
             width=self.width if width is None else width,
@@ -300,9 +298,7 @@ class Resampler:
         return np.concatenate(parts)
 
 
-def resample(
-    samples: Samples, src_rate: int, dst_rate: int, design: ResamplerDesign = _DEFAULT_DESIGN
-) -> Samples:
+def resample(samples: Samples, src_rate: int, dst_rate: int, design: ResamplerDesign = _DEFAULT_DESIGN) -> Samples:
     """One-shot resampling of mono or multi-channel samples; keeps the dtype (int16 or float32).
 
     Output length is ``ceil(len * dst / src)``.
@@ -394,13 +390,9 @@ class FormatConverter:
         return self._emit(tail)
 
     def _emit(self, samples: Samples) -> AudioChunk:
-        samples = _convert_channels(
-            samples, 1 if samples.ndim == 1 else samples.shape[1], self.target.channels
-        )
+        samples = _convert_channels(samples, 1 if samples.ndim == 1 else samples.shape[1], self.target.channels)
         t0 = self._t0 if self._t0 is not None else 0.0
-        out = AudioChunk(
-            _cast(samples, self.target.width), self.target, t0 + self._out_frames / self.target.rate
-        )
+        out = AudioChunk(_cast(samples, self.target.width), self.target, t0 + self._out_frames / self.target.rate)
         self._out_frames += out.num_frames
         return out
 
@@ -463,9 +455,7 @@ def concat(chunks: Sequence[AudioChunk]) -> AudioChunk:
 
 
 def silence(fmt: AudioFormat, seconds: float, timestamp: float = 0.0) -> AudioChunk:
-    shape: tuple[int, ...] = (
-        (fmt.frames(seconds),) if fmt.channels == 1 else (fmt.frames(seconds), fmt.channels)
-    )
+    shape: tuple[int, ...] = (fmt.frames(seconds),) if fmt.channels == 1 else (fmt.frames(seconds), fmt.channels)
     return AudioChunk(np.zeros(shape, dtype=fmt.dtype), fmt, timestamp)
 
 
@@ -481,6 +471,4 @@ def rms_dbfs(samples: Samples) -> float:
 def split_chunk(chunk: AudioChunk, frames_per_chunk: int) -> Iterable[AudioChunk]:
     """Slice one chunk into consecutive chunks of at most `frames_per_chunk` frames."""
     for i in range(0, chunk.num_frames, frames_per_chunk):
-        yield AudioChunk(
-            chunk.samples[i : i + frames_per_chunk], chunk.format, chunk.timestamp + i / chunk.format.rate
-        )
+        yield AudioChunk(chunk.samples[i : i + frames_per_chunk], chunk.format, chunk.timestamp + i / chunk.format.rate)

@@ -41,9 +41,7 @@ _CLAUSE_BREAK: Final = re.compile(r"[,;:](?=\s)|\s[\u2013\u2014-](?=\s)")
 class SentenceSplitter:
     """Splits streamed text into sentences (see the module docstring for the rules)."""
 
-    def __init__(
-        self, *, max_chars: int = 120, min_clause_chars: int = 24, hard_max_chars: int = 250
-    ) -> None:
+    def __init__(self, *, max_chars: int = 120, min_clause_chars: int = 24, hard_max_chars: int = 250) -> None:
         if not 0 < min_clause_chars < max_chars <= hard_max_chars:
             raise ValueError("need 0 < min_clause_chars < max_chars <= hard_max_chars")
         self.max_chars = max_chars

@@ -137,9 +137,7 @@ class MoonshineTranscriber:
             opts.inter_op_num_threads = 1
         opts.log_severity_level = 3
         providers = ["CPUExecutionProvider"]
-        self._encoder = ort.InferenceSession(
-            str(self.model_dir / "encoder_model.ort"), opts, providers=providers
-        )
+        self._encoder = ort.InferenceSession(str(self.model_dir / "encoder_model.ort"), opts, providers=providers)
         self._decoder = ort.InferenceSession(
             str(self.model_dir / "decoder_model_merged.ort"), opts, providers=providers
         )
@@ -237,9 +235,7 @@ class WhisperTranscriber:
         self.model_dir = Path(model_dir) if model_dir is not None else find_whisper_model()
         if not (self.model_dir / "model.bin").is_file():
             raise ConfigError(f"no CTranslate2 Whisper model (model.bin) in {self.model_dir}")
-        self._model = WhisperModel(
-            str(self.model_dir), device="cpu", compute_type="int8", cpu_threads=cpu_threads
-        )
+        self._model = WhisperModel(str(self.model_dir), device="cpu", compute_type="int8", cpu_threads=cpu_threads)
         self._language = language
         self._lock = threading.Lock()
         logger.info("Whisper model loaded from %s", self.model_dir)

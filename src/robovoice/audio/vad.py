@@ -213,9 +213,7 @@ class Endpointer:
         frames = [f for f in self._utt if f.start < keep_until]
         audio = AudioChunk(np.concatenate([f.samples for f in frames]), MODEL_FORMAT, frames[0].start)
         event = SpeechEnded(audio=audio, start=self._onset, end=end, truncated=truncated)
-        logger.debug(
-            "speech ended: %.2f-%.2f s%s", event.start, event.end, " (truncated)" if truncated else ""
-        )
+        logger.debug("speech ended: %.2f-%.2f s%s", event.start, event.end, " (truncated)" if truncated else "")
         self.reset()
         return event
 
@@ -274,9 +272,7 @@ class SileroVAD:
             raise AudioError(f"VAD frames are {VAD_FRAME_SAMPLES} samples of 16 kHz mono, got {x.shape}")
         self._input[0, :_CONTEXT_SAMPLES] = self._input[0, -_CONTEXT_SAMPLES:]
         self._input[0, _CONTEXT_SAMPLES:] = x
-        prob, self._state = self._session.run(
-            None, {"input": self._input, "state": self._state, "sr": self._sr}
-        )
+        prob, self._state = self._session.run(None, {"input": self._input, "state": self._state, "sr": self._sr})
         return float(np.asarray(prob).reshape(-1)[0])
 
 

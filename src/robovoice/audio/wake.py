@@ -210,9 +210,7 @@ class OpenWakeWordDetector:
     def process(self, frame: Samples) -> float:
         x = as_int16(frame)
         if x.shape != (WAKE_FRAME_SAMPLES,):
-            raise AudioError(
-                f"wake word frames are {WAKE_FRAME_SAMPLES} samples of 16 kHz mono, got {x.shape}"
-            )
+            raise AudioError(f"wake word frames are {WAKE_FRAME_SAMPLES} samples of 16 kHz mono, got {x.shape}")
         self._features(x)
         features = self._features.get_features(self._window)
         score = float(self._session.run(None, {self._input_name: features})[0].reshape(-1)[0])
