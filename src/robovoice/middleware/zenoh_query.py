@@ -1,0 +1,101 @@
+"""A Zenoh query in flight, seen from the event loop: `Exchange`.
+
+Whatever concerns one query (its replies, the end of the query, action feedback, the
+node leaving, the adapter closing) arrives as an item in the exchange's queue, on the
+event loop (through `LoopBridge`). The caller awaits `next()` under its own timeout.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import zenoh
+
+from robovoice.middleware.base import JSON, Feedback
+from robovoice.middleware.zenoh_bridge import LoopBridge
+from robovoice.middleware.zenoh_codec import ENCODING, encode
+
+
+@dataclass(frozen=True, slots=True)
+class Answer:
+    """A reply: `ok` (a result) or an error reply, with its payload and attachment bytes."""
+
+    ok: bool
+    payload: bytes
+    attachment: bytes | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Finished:
+    """Zenoh finished the query: every queryable answered, or none matched, or it timed out."""
+
+
+@dataclass(frozen=True, slots=True)
+class NodeGone:
+    """The node's liveliness token disappeared while the query was in flight."""
+
+
+@dataclass(frozen=True, slots=True)
+class Closed:
+    """The adapter was closed while the query was in flight."""
+
+
+Item = Answer | Finished | NodeGone | Closed | Feedback
+
+
+class Exchange:
+    """One query to one node (see the module docstring)."""
+
+    def __init__(self, node: str, goal_id: str | None = None) -> None:
+        self.node = node
+        self.goal_id = goal_id
+        self._items: asyncio.Queue[Item] = asyncio.Queue()
+
+    def push(self, item: Item) -> None:
+        self._items.put_nowait(item)
+
+    async def next(self) -> Item:
+        return await self._items.get()
+
+    def on_reply(self, reply: zenoh.Reply) -> None:
+        sample = reply.ok
+        if sample is not None:
+            attachment = sample.attachment
+            self.push(Answer(True, sample.payload.to_bytes(),
+                             None if attachment is None else attachment.to_bytes()))
+            return
+        error = reply.err
+        self.push(Answer(False, b"" if error is None else error.payload.to_bytes()))
+
+    def on_finished(self) -> None:
+        self.push(Finished())
+
+
+def send_query(
+    session: zenoh.Session,
+    bridge: LoopBridge,
+    exchange: Exchange,
+    key: str,
+    args: Mapping[str, JSON] | None,
+    *,
+    timeout: float,
+    parameters: Mapping[str, str] | None = None,
+) -> None:
+    """Send ``GET key?parameters`` with `args` as JSON; replies go to `exchange`.
+
+    Zenoh's own timeout is a little longer than the caller's, so the caller's deadline
+    decides and Zenoh only cleans up. Raises `TypeError`/`ValueError` for arguments JSON
+    cannot carry, `zenoh.ZError` when the session is closed.
+    """
+    payload = None if args is None else encode(dict(args))
+    selector = zenoh.Selector(key, dict(parameters)) if parameters else key
+    session.get(
+        selector,
+        bridge.handler(exchange.on_reply, exchange.on_finished),
+        payload=payload,
+        encoding=ENCODING if payload is not None else None,
+        consolidation=zenoh.ConsolidationMode.NONE,
+        timeout=timeout + 1.0,
+    )
