@@ -1,0 +1,75 @@
+"""`robovoice sim`: run the simulated robot's nodes on a middleware until stopped.
+
+    robovoice sim --middleware zenoh://127.0.0.1:7447 [--node navigation --node base] [--speed 5]
+
+Prints one line on standard output once every node is hosted and announced
+(``robovoice sim: ready: <nodes> on <uri>``); SIGINT or SIGTERM withdraws the nodes, closes
+the middleware and exits with status 0.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import signal
+from typing import Any
+
+from robovoice.middleware import open_middleware
+from robovoice.sim import NODE_NAMES, SETUP_NAMES, SimRobot, run_sim_forever
+
+
+def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is private
+    parser: argparse.ArgumentParser = subparsers.add_parser(
+        "sim",
+        help="run the simulated robot's nodes on a middleware",
+        description="Run the simulated co-presence robot (all its nodes, or the ones named) on a "
+                    "middleware until SIGINT/SIGTERM. Prints one 'ready' line when the nodes are up.",
+    )
+    parser.add_argument("--middleware", default="zenoh://", metavar="URI",
+                        help="middleware URI (default: zenoh://, peer mode on 127.0.0.1:7447; see docs/zenoh.md)")
+    parser.add_argument("--node", action="append", dest="nodes", choices=NODE_NAMES, metavar="NAME",
+                        help=f"run only this node (repeatable): {', '.join(NODE_NAMES)}")
+    parser.add_argument("--speed", type=float, default=1.0,
+                        help="simulated seconds per real second (default 1)")
+    parser.add_argument("--setup", default="",
+                        help=f"state to establish first: {', '.join(SETUP_NAMES)}, combined with '+'")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.speed <= 0:
+        raise SystemExit("robovoice sim: --speed must be positive")
+    return asyncio.run(_serve(args.middleware, args.nodes, args.speed, args.setup))
+
+
+async def _serve(uri: str, nodes: list[str] | None, speed: float, setup: str) -> int:
+    loop = asyncio.get_running_loop()
+    main = asyncio.current_task()
+    assert main is not None
+    stopping = False
+
+    def stop() -> None:
+        nonlocal stopping
+        if not stopping:
+            stopping = True
+            main.cancel()
+
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(signum, stop)
+
+    def ready(robot: SimRobot) -> None:
+        print(f"robovoice sim: ready: {', '.join(robot.node_names)} on {uri}", flush=True)
+
+    middleware = open_middleware(uri)
+    try:
+        await middleware.start()
+        await run_sim_forever(middleware, speed=speed, nodes=nodes, setup=setup, on_ready=ready)
+    except asyncio.CancelledError:
+        if not stopping:
+            raise
+        main.uncancel()
+    finally:
+        await middleware.close()
+        for signum in (signal.SIGINT, signal.SIGTERM):
+            loop.remove_signal_handler(signum)
+    return 0
