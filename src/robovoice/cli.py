@@ -22,6 +22,7 @@ COMMAND_MODULES = (
     "robovoice.commands.assistant",
     "robovoice.commands.voice",
     "robovoice.commands.bench",
+    "robovoice.commands.models",
 )
 
 

@@ -123,13 +123,3 @@ def environment(env: Mapping[str, str] | None = None) -> Environment:
     return Environment(Path(cache), Path(state), dict(env))
 
 
-def read_api_key(backend: BackendConfig, env: Environment) -> str | None:
-    """The API key of a backend from its env var or file; None when it needs none."""
-    if backend.api_key_file is not None:
-        try:
-            return backend.api_key_file.expanduser().read_text(encoding="utf-8").strip()
-        except OSError as exc:
-            raise ConfigError(f"cannot read API key file {backend.api_key_file}: {exc.strerror}") from exc
-    if backend.api_key_env is not None:
-        return env.secret(backend.api_key_env)
-    return None

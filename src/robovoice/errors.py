@@ -125,6 +125,10 @@ class MiddlewareError(RobovoiceError):
     """The middleware itself failed (cannot connect, closed)."""
 
 
+class RobotUnreachableError(RobovoiceError):
+    """The robot's MCP server (or its middleware) cannot be reached."""
+
+
 class LLMError(RobovoiceError):
     """An LLM backend failed: connection, HTTP error, deadline, bad response."""
 

@@ -1,0 +1,164 @@
+"""`robovoice chat` (a text conversation) and `robovoice eval` (case files → scores)."""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import sys
+import time
+from pathlib import Path
+
+from robovoice.assistant.connect import open_robot
+from robovoice.assistant.events import (
+    BackendFailed,
+    SentenceReady,
+    ToolCalled,
+    ToolProgressed,
+    ToolReturned,
+    TurnEvent,
+)
+from robovoice.assistant.loop import Assistant
+from robovoice.commands.common import (
+    add_llm_args,
+    add_robot_args,
+    backend_from_args,
+    config_from_args,
+    robot_target_from_args,
+    warm_up,
+)
+from robovoice.eval.cases import load_cases
+from robovoice.eval.runner import CaseResult, run_eval
+
+
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    chat = subparsers.add_parser(
+        "chat", help="talk to the robot in text (reads lines from stdin when it is not a terminal)",
+        description="A text conversation with the assistant; tool calls and results are shown as they happen.")
+    add_robot_args(chat)
+    add_llm_args(chat)
+    chat.add_argument("--max-steps", type=int, default=4, help="model calls per turn at most (default 4)")
+    chat.set_defaults(run=run_chat)
+
+    ev = subparsers.add_parser(
+        "eval", help="run an evaluation case file (DESIGN.md §6) and report accuracy and latency",
+        description="Runs each case with a fresh robot and conversation. Exit status 0 whatever the score.")
+    ev.add_argument("file", type=Path, help="a JSON Lines case file")
+    add_robot_args(ev, default_speed=10.0)
+    add_llm_args(ev)
+    ev.add_argument("--json", action="store_true", help="print one JSON object with the summary and every case")
+    ev.add_argument("--limit", type=int, help="run only the first N cases")
+    ev.add_argument("--only", action="append", metavar="ID", help="run only these case ids")
+    ev.set_defaults(run=run_eval_command)
+
+
+def _short(text: str, limit: int = 160) -> str:
+    text = " ".join(text.split())
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+class ChatPrinter:
+    """Prints a turn as it happens; progress lines at most once a second per tool."""
+
+    def __init__(self, out=sys.stdout) -> None:  # type: ignore[no-untyped-def]  # any text stream
+        self.out = out
+        self._last_progress: dict[str, float] = {}
+
+    def __call__(self, event: TurnEvent) -> None:
+        match event:
+            case ToolCalled(name=name, arguments=arguments):
+                args = ", ".join(f"{k}={v!r}" for k, v in arguments.items())
+                print(f"  → {name}({args})", file=self.out, flush=True)
+            case ToolReturned(name=name, text=text, is_error=is_error, duration_ms=ms):
+                tag = "error" if is_error else "ok"
+                print(f"  ← {name} {tag} ({ms:.0f} ms): {_short(text)}", file=self.out, flush=True)
+            case ToolProgressed(name=name, message=message) if message:
+                now = time.monotonic()
+                if now - self._last_progress.get(name, 0.0) >= 1.0:
+                    self._last_progress[name] = now
+                    print(f"  … {message}", file=self.out, flush=True)
+            case SentenceReady(text=text):
+                print(f"robot> {text}", file=self.out, flush=True)
+            case BackendFailed(reason=reason):
+                print(f"  ! no language model answered: {_short(reason, 300)}", file=self.out, flush=True)
+            case _:
+                pass
+
+
+async def _chat(args: argparse.Namespace) -> int:
+    config = config_from_args(args)
+    backend = backend_from_args(args, config)
+    target = robot_target_from_args(args, config)
+    interactive = sys.stdin.isatty()
+    try:
+        async with open_robot(target) as link:
+            specs = await link.tools.specs()
+            if interactive:
+                print(f"robovoice chat: {len(specs)} tools from {target.describe()}; loading the model…", flush=True)
+            await warm_up(backend, specs)
+            assistant = Assistant(backend, link.tools, observer=ChatPrinter(), max_steps=args.max_steps)
+            if interactive:
+                print("Type a request (Ctrl-D to quit).", flush=True)
+            while True:
+                if interactive:
+                    print("you> ", end="", flush=True)
+                line = await asyncio.to_thread(sys.stdin.readline)
+                if not line:
+                    break
+                if line.strip():
+                    await assistant.turn(line.strip())
+    finally:
+        await backend.aclose()
+    return 0
+
+
+def run_chat(args: argparse.Namespace) -> int:
+    return asyncio.run(_chat(args))
+
+
+def _print_case(result: CaseResult) -> None:
+    mark = "PASS" if result.passed else "FAIL"
+    latency = result.latency_ms.get("first_sentence")
+    ms = f"{latency:7.0f} ms" if latency is not None else "      – ms"
+    calls = ", ".join(c["tool"] for c in result.calls) or "-"
+    print(f"{mark} {result.id:<20} {ms}  calls: {calls}" + ("" if result.passed else f"  ({result.reason})"),
+          file=sys.stderr, flush=True)
+
+
+async def _eval(args: argparse.Namespace) -> int:
+    cases = load_cases(args.file)
+    if args.only:
+        cases = [c for c in cases if c.id in set(args.only)]
+    if args.limit:
+        cases = cases[: args.limit]
+    config = config_from_args(args)
+    backend = backend_from_args(args, config)
+    target = robot_target_from_args(args, config)
+    audio = None
+    try:
+        async with open_robot(target) as link:  # once, to warm the model with the real tool list
+            await warm_up(backend, await link.tools.specs())
+        if any(c.audio is not None for c in cases):
+            from robovoice.voice.evaluation import open_audio_frontend  # needs robovoice[voice]
+
+            async with open_audio_frontend(config) as audio:
+                report = await run_eval(cases, backend, lambda: open_robot(target), audio=audio,
+                                        on_result=None if args.json else _print_case)
+        else:
+            report = await run_eval(cases, backend, lambda: open_robot(target),
+                                    on_result=None if args.json else _print_case)
+    finally:
+        await backend.aclose()
+    summary = report.to_dict()
+    if args.json:
+        print(json.dumps(summary, indent=None))
+    else:
+        print(f"{summary['passed']}/{summary['cases']} passed ({summary['accuracy']:.1%}); "
+              f"input → first sentence p50 {summary['p50']} ms, p95 {summary['p95']} ms; backend {summary['backend']}")
+        for stage, figures in summary["stages"].items():
+            print(f"  {stage:<16} p50 {figures['p50']:>8} ms   p95 {figures['p95']:>8} ms   (n={figures['n']})")
+    return 0
+
+
+def run_eval_command(args: argparse.Namespace) -> int:
+    return asyncio.run(_eval(args))
