@@ -111,9 +111,7 @@ def eval_set() -> list[ClipSpec]:
         clips.append(ClipSpec(f"wake-{i + 1:02d}", text, voice, True, snr, noise))
     for i, text in enumerate(_NO_WAKE * 2):
         snr, noise = _NOISES[(i + 2) % len(_NOISES)]
-        clips.append(
-            ClipSpec(f"nowake-{i + 1:02d}", text, _VOICES[(i + 3) % len(_VOICES)], False, snr, noise)
-        )
+        clips.append(ClipSpec(f"nowake-{i + 1:02d}", text, _VOICES[(i + 3) % len(_VOICES)], False, snr, noise))
     return clips
 
 
@@ -143,6 +141,40 @@ NEGATIVE_TEXTS = [
     "I will call you back after dinner, okay?",
     "Here is a look at the stories making headlines this hour.",
     "The concert was cancelled because of the storm.",
+    "Our next guest has written three books about gardening in small spaces.",
+    "Add the onions and fry them gently until they are golden.",
+    "The train to Manchester is delayed by about twenty minutes.",
+    "Did you remember to lock the back door last night?",
+    "Stocks fell sharply this morning after the announcement.",
+    "My knee has been hurting since I went for that long walk.",
+    "The children are coming to visit on Sunday afternoon.",
+    "Turn left at the church and then take the second right.",
+    "This episode was recorded in front of a live audience.",
+    "Which one do you prefer, the blue one or the green one?",
+    "The parcel will be delivered between ten and twelve.",
+    "He scored twice in the last ten minutes of the match.",
+    "Police are asking drivers to avoid the city centre tonight.",
+    "I have no idea where I put the remote control.",
+    "The library has a new reading group for older adults.",
+    "Thank you for calling, please hold the line.",
+    "Jarrod and Maggie are getting married in June.",
+    "Hey, did you hear what happened at the council meeting?",
+    "Travelling by ferry is much cheaper in the winter months.",
+    "The soup needs a little more salt and some pepper.",
+    "According to the report, unemployment fell again last month.",
+    "Let us take a short break and we will be right back.",
+    "My grandson showed me how to make video calls on the tablet.",
+    "Apparently the heating engineer is coming on Wednesday.",
+    "The election results will be announced after midnight.",
+    "Could you read the letter to me? My eyes are tired today.",
+    "The garden centre has a sale on roses this week.",
+    "Jasmine tea is my favourite in the evening.",
+    "Harvest festival starts on the first weekend of October.",
+    "A jar of jam and a loaf of bread, please.",
+    "The vet said the dog needs to lose a little weight.",
+    "Remember, your appointment with the optician is at three.",
+    "In other news, a rare bird was spotted on the coast.",
+    "Dinner is ready, come and sit down while it is hot.",
 ]
 
 
@@ -287,23 +319,33 @@ def write_set(specs: Sequence[ClipSpec], out: Path) -> None:
 
 
 def write_negative(minutes: float, path: Path, seed: int = 7) -> None:
-    """Varied talk without the wake phrase: random texts, voices, pauses, and noise on about
-    half of the sentences (pink/white/babble at 10-20 dB SNR)."""
+    """Varied talk without the wake phrase: random texts, voices, levels and pauses, noise on
+    about half of the sentences (pink/white/babble at 10-20 dB SNR). A JSON file beside the
+    WAV lists every sentence with its time, voice and noise."""
     rng = np.random.default_rng(seed)
     voices = Voices()
     all_voices = [*_VOICES, "espeak:en-us+f2:170", "espeak:en-gb-x-rp:160", "espeak:en-us-nyc:175"]
     parts: list[np.ndarray] = []
+    segments: list[dict[str, object]] = []
     total = 0
     target = int(minutes * 60 * RATE)
     while total < target:
         text = NEGATIVE_TEXTS[int(rng.integers(len(NEGATIVE_TEXTS)))]
-        s = voices.speak(text, all_voices[int(rng.integers(len(all_voices)))])
+        voice = all_voices[int(rng.integers(len(all_voices)))]
+        s = voices.speak(text, voice)
+        speech_s = len(s) / RATE
         s = s / np.sqrt(active_power(s)) * 10 ** (float(rng.uniform(-30, -15)) / 20)
         s = np.concatenate((s, np.zeros(int(rng.uniform(0.2, 1.5) * RATE))))
+        noise: str | None = None
+        snr: float | None = None
         if rng.random() < 0.5:
-            kind = ["pink", "white", "babble"][int(rng.integers(3))]
-            noise_voices = voices if kind == "babble" else None
-            s = mix(s, make_noise(kind, len(s), rng, noise_voices), float(rng.uniform(10, 20)))
+            noise = ["pink", "white", "babble"][int(rng.integers(3))]
+            snr = round(float(rng.uniform(10, 20)), 1)
+            s = mix(s, make_noise(noise, len(s), rng, voices if noise == "babble" else None), snr)
+        segments.append(
+            {"start_s": round(total / RATE, 2), "end_s": round(total / RATE + speech_s, 2), "text": text,
+             "voice": voice, "noise": noise, "snr_db": snr}
+        )  # fmt: skip
         parts.append(s)
         total += len(s)
         print(f"negative: {total / RATE / 60:.1f} / {minutes} min", file=sys.stderr, end="\r")
@@ -311,6 +353,7 @@ def write_negative(minutes: float, path: Path, seed: int = 7) -> None:
     clip *= min(1.0, 0.95 / float(np.max(np.abs(clip))))
     path.parent.mkdir(parents=True, exist_ok=True)
     write_wav(path, AudioChunk(float32_to_int16(clip), MODEL_FORMAT))
+    path.with_suffix(".json").write_text(json.dumps(segments, indent=0) + "\n", encoding="utf-8")
     print(f"\nwrote {path} ({len(clip) / RATE / 60:.1f} min)", file=sys.stderr)
 
 
@@ -321,9 +364,7 @@ def load_spec_file(path: Path) -> list[ClipSpec]:
 
 
 def main(argv: Iterable[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(
-        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
-    )
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--set", default="tests", help="tests | eval | spec")
     parser.add_argument("--spec", type=Path, help="JSON list of clip specs (with --set spec)")
     parser.add_argument("--out", type=Path, help=f"output folder (default {DEFAULT_OUT} for tests)")

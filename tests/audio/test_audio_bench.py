@@ -17,7 +17,6 @@ from robovoice.audio.bench import (
 )
 from robovoice.audio.fakes import EnergyVAD, ScriptedTranscriber, ScriptedWakeDetector, ToneSynthesizer
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, AudioFormat
-from robovoice.audio.stt import strip_wake_phrase
 from robovoice.audio.wake import WakeDeciderConfig
 from robovoice.errors import AudioError
 
@@ -42,20 +41,6 @@ def test_normalize_text() -> None:
 )
 def test_word_error_rate(ref: str, hyp: str, wer: float) -> None:
     assert word_error_rate(ref, hyp) == pytest.approx(wer)
-
-
-@pytest.mark.parametrize(
-    ("text", "expected"),
-    [
-        ("Hey, Jarvis, turn on the projector.", "turn on the projector."),
-        ("hey jarvis. Go to the kitchen", "Go to the kitchen"),
-        ("Jarvis, stop.", "stop."),
-        ("Turn on the Jarvis mode", "Turn on the Jarvis mode"),
-        ("Hey Jarvis", ""),
-    ],
-)
-def test_strip_wake_phrase(text: str, expected: str) -> None:
-    assert strip_wake_phrase(text) == expected
 
 
 def test_stats() -> None:

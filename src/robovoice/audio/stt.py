@@ -66,6 +66,18 @@ def _to_model_input(audio: AudioChunk) -> np.ndarray:
     return np.ascontiguousarray(as_float32(convert(audio, fmt).samples), dtype=np.float32)
 
 
+def _repetition(ids: list[int], times: int = 3, longest: int = 12) -> int:
+    """If `ids` ends with the same block of 1..`longest` tokens repeated `times` times (a
+    decoder stuck in a loop, typical on noise), the number of tokens to drop; else 0."""
+    for k in range(1, longest + 1):
+        if len(ids) < k * times:
+            break
+        block = ids[-k:]
+        if all(ids[-(i + 1) * k : len(ids) - i * k] == block for i in range(1, times)):
+            return k * (times - 1)
+    return 0
+
+
 def find_moonshine_model() -> Path:
     """Moonshine base-en as shipped inside the ``moonshine-cpp`` wheel (located without
     importing the package, which loads native libraries at import)."""
@@ -105,7 +117,8 @@ class MoonshineTranscriber:
 
     Thread-safe (calls are serialised). Clips shorter than `min_audio_s` give an empty
     transcript without running the model; at most `max_tokens_per_s` tokens per second of
-    audio are generated (Moonshine's own guard against repetition loops).
+    audio are generated (Moonshine's own guard against repetition loops), and decoding also
+    stops when the same phrase comes out three times in a row.
     """
 
     _BOS = 1
@@ -196,6 +209,11 @@ class MoonshineTranscriber:
             if token == self._EOS:
                 break
             ids.append(token)
+            loop = _repetition(ids)
+            if loop:
+                del ids[len(ids) - loop :]  # keep one copy of the repeated phrase
+                logger.debug("Moonshine: stopped a repetition loop after %d tokens", len(ids))
+                break
         return self.detokenize(ids)
 
     def detokenize(self, ids: list[int]) -> str:
@@ -258,6 +276,8 @@ class WhisperTranscriber:
                 samples,
                 language=self._language,
                 beam_size=1,
+                temperature=0.0,  # no re-decoding at higher temperatures: predictable latency
+                without_timestamps=True,
                 vad_filter=False,
                 condition_on_previous_text=False,
             )

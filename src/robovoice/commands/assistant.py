@@ -119,7 +119,7 @@ def run_chat(args: argparse.Namespace) -> int:
 def _print_case(result: CaseResult) -> None:
     mark = "PASS" if result.passed else "FAIL"
     latency = result.latency_ms.get("first_sentence")
-    ms = f"{latency:7.0f} ms" if latency is not None else "      – ms"
+    ms = f"{latency:7.0f} ms" if latency is not None else "      - ms"
     calls = ", ".join(c["tool"] for c in result.calls) or "-"
     print(f"{mark} {result.id:<20} {ms}  calls: {calls}" + ("" if result.passed else f"  ({result.reason})"),
           file=sys.stderr, flush=True)
