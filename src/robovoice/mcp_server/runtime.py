@@ -1,0 +1,113 @@
+"""Putting a robot together: the middleware, the sim robot (or a real one over a URI), the
+manifests, the audit log and the `RobotToolServer`, started and stopped as one.
+
+    async with open_robot(RobotSpec(sim=True, sim_speed=20)) as robot:
+        robot.server   # RobotToolServer, already following presence
+        robot.sim      # SimRobot, or None when the robot is on the far side of a middleware URI
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import AsyncIterator, Collection
+from contextlib import AsyncExitStack, asynccontextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+from robovoice.errors import ConfigError
+from robovoice.manifest import ManifestSet, format_error, load_manifest_dir
+from robovoice.mcp_server.audit import AuditLog
+from robovoice.mcp_server.server import RobotToolServer
+from robovoice.middleware import Middleware, open_middleware
+from robovoice.sim import SimRobot, start_sim_robot
+
+log = logging.getLogger(__name__)
+
+SIM_URI = "memory://"
+
+
+@dataclass(frozen=True, slots=True)
+class RobotSpec:
+    """Which robot to serve.
+
+    `sim`: run the sim robot in this process (on `middleware_uri`, by default the in-process
+    memory bus). Without `sim`, `middleware_uri` is required and the nodes live elsewhere.
+    `manifests`: a folder of manifests that replace the nodes' own (by node name).
+    `audit_log`: where the audit log goes (None: no audit log).
+    """
+
+    sim: bool = False
+    middleware_uri: str | None = None
+    manifests: Path | None = None
+    sim_speed: float = 1.0
+    sim_nodes: Collection[str] | None = None
+    audit_log: Path | None = None
+
+    def uri(self) -> str:
+        if self.middleware_uri is not None:
+            return self.middleware_uri
+        if self.sim:
+            return SIM_URI
+        raise ConfigError("say which robot: --robot sim, or --middleware URI (e.g. zenoh://127.0.0.1:7447)")
+
+
+@dataclass(frozen=True, slots=True)
+class Robot:
+    middleware: Middleware
+    server: RobotToolServer
+    sim: SimRobot | None
+
+
+def load_override(folder: Path | None) -> ManifestSet | None:
+    """Load a manifest folder; its bad files are reported (their nodes then expose nothing)."""
+    if folder is None:
+        return None
+    loaded = load_manifest_dir(folder)
+    if not loaded.manifests and loaded.errors and not loaded.failed:
+        raise ConfigError("; ".join(format_error(e) for e in loaded.errors))
+    for error in loaded.errors:
+        log.warning("manifest not used: %s", format_error(error))
+    return loaded
+
+
+@asynccontextmanager
+async def open_robot(spec: RobotSpec) -> AsyncIterator[Robot]:
+    """Start everything in `spec`; stop it all (sim, server, middleware) on the way out."""
+    override = load_override(spec.manifests)
+    middleware = open_middleware(spec.uri())
+    async with AsyncExitStack() as stack:
+        await middleware.start()
+        stack.push_async_callback(middleware.close)
+        sim: SimRobot | None = None
+        if spec.sim:
+            sim = await start_sim_robot(middleware, speed=spec.sim_speed, nodes=spec.sim_nodes)
+            stack.push_async_callback(sim.stop)
+        audit = AuditLog(spec.audit_log)
+        stack.callback(audit.close)
+        server = RobotToolServer(middleware, manifests=override, audit=audit)
+        await stack.enter_async_context(server.running())
+        yield Robot(middleware, server, sim)
+
+
+async def wait_for_tools(server: RobotToolServer, *, names: Collection[str] = (), timeout: float) -> None:
+    """Wait (at most `timeout` s) until the tools `names` are offered, or, without names,
+    until some tools are and the list has then been quiet for a moment (nodes on a network
+    middleware announce themselves one by one). Returns either way: the caller reports."""
+    quiet_s = 0.3
+
+    def offered() -> set[str]:
+        return {t.name for t in server.tools()}
+
+    try:
+        async with asyncio.timeout(timeout):
+            if names:
+                while not set(names) <= offered():
+                    await server.changed()
+                return
+            while not offered():
+                await server.changed()
+            while True:
+                await asyncio.wait_for(server.changed(), timeout=quiet_s)
+    except TimeoutError:
+        return
