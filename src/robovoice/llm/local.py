@@ -1,0 +1,334 @@
+"""`LocalLlamaBackend`: the embedded model (llama-cpp-python, CPU), the same events as the rest.
+
+* Loaded once (``chat_format="chatml-function-calling"``, n_ctx 4096, 2 threads
+  by default) on the backend's own single-thread executor; every llama call
+  runs there, and `ThreadStream` bridges its output into asyncio.
+* Prompts follow `chatml_tools` (the chatml-function-calling format, rendered
+  by us; see that module for why). A turn with tools first lets a grammar pick
+  the head (``message:`` or ``functions.<name>:``): a message is then streamed
+  token by token as `TextDelta`; calls are generated whole, each argument
+  object constrained by its JSON schema, and yielded as `ToolCallRequested`
+  as soon as each is complete. A turn without tools is streamed plain ChatML.
+* Prefix reuse: llama.cpp keeps the key/value cache of the last evaluation and
+  ``Llama.generate`` re-evaluates only what follows the longest common token
+  prefix. `warm_up` evaluates the system prompt + tools once, so the first real
+  turn only evaluates the conversation. ``Usage.cached_prompt_tokens`` reports
+  how many prompt tokens were reused.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import importlib.util
+import json
+import logging
+import os
+import threading
+import time
+from collections.abc import AsyncIterator, Callable, Iterator, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from robovoice.errors import LLMError, MissingDependencyError
+from robovoice.llm import chatml_tools as fmt
+from robovoice.llm.base import (
+    ChatMessage,
+    Deadlines,
+    Finished,
+    LLMEvent,
+    TextDelta,
+    ToolSpec,
+    Usage,
+    tool_call_from_raw,
+)
+from robovoice.llm.bridge import ThreadStream
+from robovoice.llm.model_store import INSTALL_HINT as MODEL_INSTALL_HINT
+from robovoice.llm.model_store import default_model_ready, resolve_model_path
+
+log = logging.getLogger(__name__)
+
+INSTALL_HINT = "pip install 'robovoice[llm]'"
+# A CPU model needs longer to its first token than a server (prefill of a long history on 2 cores).
+LOCAL_DEADLINES = Deadlines(connect_s=0.0, first_token_s=30.0, idle_s=10.0, total_s=120.0)
+
+
+def llama_cpp_available() -> bool:
+    return importlib.util.find_spec("llama_cpp") is not None
+
+
+def _import_llama() -> Any:
+    # llama.cpp's CPU backend is built with OpenMP, whose threads spin while waiting. On a
+    # 2-core robot computer shared with wake word, VAD and TTS, spinning threads starve each
+    # other (measured: 20 tokens took 22.8 s instead of 3.7 s under load). Passive waiting
+    # must be chosen before the OpenMP runtime loads; an explicit OMP_WAIT_POLICY wins.
+    os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+    try:
+        import llama_cpp  # heavy and optional: imported when a model is loaded
+    except ImportError as exc:
+        raise MissingDependencyError("the embedded local LLM (llama-cpp-python)", INSTALL_HINT) from exc
+    return llama_cpp
+
+
+@dataclass(slots=True)
+class TurnStats:
+    """Measured on the model thread for the last turn (or warm-up)."""
+
+    prompt_tokens: int = 0
+    cached_prompt_tokens: int = 0
+    prompt_eval_ms: float = 0.0  # llama.cpp's own prompt-evaluation time, all calls of the turn
+    first_event_s: float | None = None  # from job start to the first yielded event
+    total_s: float = 0.0
+    completion_tokens: int = 0
+
+
+@dataclass(slots=True)
+class _Turn:
+    stop: threading.Event
+    start: float = field(default_factory=time.perf_counter)
+    stats: TurnStats = field(default_factory=TurnStats)
+
+
+class LocalLlamaBackend:
+    """The embedded llama.cpp model; cheap to construct, loads on `load()` or the first turn."""
+
+    accepts_audio = False
+
+    def __init__(
+        self,
+        model_path: Path | None = None,
+        *,
+        name: str = "local",
+        n_threads: int = 2,
+        n_ctx: int = 4096,
+        deadlines: Deadlines = LOCAL_DEADLINES,
+        max_tokens: int = 256,
+        temperature: float = 0.0,
+        max_calls_per_turn: int = 4,
+        cache_dir: Path | None = None,
+    ) -> None:
+        if not llama_cpp_available():
+            raise MissingDependencyError("the embedded local LLM (llama-cpp-python)", INSTALL_HINT)
+        if model_path is None and not default_model_ready(cache_dir):
+            raise MissingDependencyError("the embedded LLM model", MODEL_INSTALL_HINT)
+        self.name = name
+        self.model_path = model_path
+        self.n_threads = n_threads
+        self.n_ctx = n_ctx
+        self.deadlines = deadlines
+        self.max_tokens = max_tokens
+        self.temperature = temperature
+        self.max_calls_per_turn = max_calls_per_turn
+        self.cache_dir = cache_dir
+        self.load_s: float | None = None
+        self.last_turn = TurnStats()
+        self._llama: Any = None
+        self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"llm-{name}")
+        self._pending: asyncio.Future[None] | None = None
+        self._grammars: dict[str, Any] = {}
+
+    def __repr__(self) -> str:
+        return f"LocalLlamaBackend({str(self.model_path or 'default model')!r}, n_threads={self.n_threads})"
+
+    # -- model thread -----------------------------------------------------------------
+
+    def _load_blocking(self) -> Any:
+        if self._llama is None:
+            llama_cpp = _import_llama()
+            path = resolve_model_path(self.model_path, self.cache_dir)
+            start = time.perf_counter()
+            self._llama = llama_cpp.Llama(
+                model_path=str(path),
+                chat_format="chatml-function-calling",
+                n_ctx=self.n_ctx,
+                n_threads=self.n_threads,
+                n_threads_batch=self.n_threads,
+                verbose=False,
+            )
+            self.load_s = time.perf_counter() - start
+            log.info("loaded %s in %.2f s", path.name, self.load_s)
+        return self._llama
+
+    def _grammar(self, gbnf: str) -> Any:
+        llama_cpp = _import_llama()
+        if gbnf not in self._grammars:
+            self._grammars[gbnf] = llama_cpp.LlamaGrammar.from_string(gbnf, verbose=False)
+        return self._grammars[gbnf]
+
+    def _schema_grammar(self, tool: ToolSpec) -> Any:
+        llama_cpp = _import_llama()
+        schema = json.dumps(dict(tool.parameters), sort_keys=True)
+        if schema not in self._grammars:
+            try:
+                self._grammars[schema] = llama_cpp.LlamaGrammar.from_json_schema(schema, verbose=False)
+            except (ValueError, RuntimeError, KeyError, NotImplementedError) as exc:
+                log.warning("tool %s: schema not usable as a grammar (%s); any JSON allowed", tool.name, exc)
+                self._grammars[schema] = llama_cpp.LlamaGrammar.from_string(
+                    llama_cpp.llama_grammar.JSON_GBNF, verbose=False
+                )
+        return self._grammars[schema]
+
+    def _perf(self) -> tuple[float, int]:
+        llama_cpp = _import_llama()
+        data = llama_cpp.llama_perf_context(self._llama._ctx.ctx)
+        return float(data.t_p_eval_ms), int(data.n_p_eval)
+
+    def _complete(self, turn: _Turn, prompt: str, *, stream: bool, **kwargs: Any) -> Any:
+        """One ``create_completion`` call, counting prompt tokens reused from the last evaluation."""
+        llama = self._llama
+        llama_cpp = _import_llama()
+        tokens = llama.tokenize(prompt.encode("utf-8"), add_bos=False, special=True)
+        if len(tokens) + 8 > self.n_ctx:
+            raise LLMError(f"prompt of {len(tokens)} tokens does not fit the context of {self.n_ctx}")
+        reused = 0
+        for a, b in zip(llama.input_ids[: llama.n_tokens].tolist(), tokens, strict=False):
+            if a != b:
+                break
+            reused += 1
+        if turn.stats.prompt_tokens == 0:  # the first call of the turn: its prompt is the turn's prompt
+            turn.stats.prompt_tokens = len(tokens)
+            turn.stats.cached_prompt_tokens = min(reused, len(tokens) - 1)
+        stop_flag = turn.stop
+        return llama.create_completion(
+            prompt=tokens,
+            temperature=self.temperature,
+            stream=stream,
+            stopping_criteria=llama_cpp.StoppingCriteriaList([lambda _ids, _logits: stop_flag.is_set()]),
+            **kwargs,
+        )
+
+    def _stream_text(self, turn: _Turn, prompt: str) -> Iterator[LLMEvent]:
+        reason = "stop"
+        for chunk in self._complete(turn, prompt, stream=True, max_tokens=self.max_tokens, stop=[fmt.IM_END]):
+            choice = chunk["choices"][0]
+            turn.stats.completion_tokens += 1
+            if choice["text"]:
+                yield TextDelta(choice["text"])
+            if choice.get("finish_reason"):
+                reason = str(choice["finish_reason"])
+        yield self._finished(turn, reason)
+
+    def _calls(self, turn: _Turn, prompt: str, first: ToolSpec, tools: Sequence[ToolSpec]) -> Iterator[LLMEvent]:
+        tool: ToolSpec | None = first
+        index = 0
+        while tool is not None and index < self.max_calls_per_turn:
+            prompt += f"{fmt.FUNCTION_PREFIX}{tool.name}:\n"
+            done = self._complete(
+                turn, prompt, stream=False, max_tokens=self.max_tokens, grammar=self._schema_grammar(tool)
+            )
+            arguments = done["choices"][0]["text"].strip()
+            turn.stats.completion_tokens += int(done["usage"]["completion_tokens"])
+            yield tool_call_from_raw(f"call_{index}_{tool.name}_{int(time.time() * 1000)}", tool.name, arguments)
+            index += 1
+            prompt += arguments + "\n"
+            head = self._complete(
+                turn, prompt, stream=False, max_tokens=16, grammar=self._grammar(fmt.next_call_grammar(tools))
+            )
+            tool = fmt.parse_head(head["choices"][0]["text"], tools).tool
+        yield self._finished(turn, "tool_calls")
+
+    def _finished(self, turn: _Turn, reason: str) -> Finished:
+        s = turn.stats
+        return Finished(reason, Usage(s.prompt_tokens, s.completion_tokens, s.cached_prompt_tokens))
+
+    def _turn_events(
+        self, turn: _Turn, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
+    ) -> Iterator[LLMEvent]:
+        self._load_blocking()
+        prompt = fmt.render_prompt(messages, tools)
+        if not tools:
+            yield from self._stream_text(turn, prompt)
+            return
+        head = self._complete(turn, prompt, stream=False, max_tokens=16, grammar=self._grammar(fmt.head_grammar(tools)))
+        decided = fmt.parse_head(head["choices"][0]["text"], tools)
+        if decided.tool is None:  # "message" (or, never under the grammar, nothing)
+            yield from self._stream_text(turn, prompt + fmt.MESSAGE_HEAD + "\n")
+        else:
+            yield from self._calls(turn, prompt, decided.tool, tools)
+
+    def _job(
+        self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
+    ) -> Callable[[threading.Event], Iterator[LLMEvent]]:
+        """The producer run on the model thread: events, with timings and llama errors wrapped."""
+
+        def produce(stop: threading.Event) -> Iterator[LLMEvent]:
+            turn = _Turn(stop)
+            self.last_turn = turn.stats
+            p_eval_ms, _ = self._perf() if self._llama is not None else (0.0, 0)
+            try:
+                for event in self._turn_events(turn, messages, tools):
+                    if turn.stats.first_event_s is None:
+                        turn.stats.first_event_s = time.perf_counter() - turn.start
+                    yield event
+            except (ValueError, RuntimeError) as exc:
+                raise LLMError(f"{self.name}: llama.cpp failed: {exc}") from exc
+            finally:
+                turn.stats.total_s = time.perf_counter() - turn.start
+                if self._llama is not None:
+                    turn.stats.prompt_eval_ms = self._perf()[0] - p_eval_ms
+
+        return produce
+
+    # -- async API --------------------------------------------------------------------
+
+    async def _settle(self) -> None:
+        """Wait until the model thread has finished an abandoned turn (it stops at the next token)."""
+        if self._pending is not None and not self._pending.done():
+            await self._pending
+
+    async def _run(self, job: Callable[[threading.Event], Iterator[LLMEvent]]) -> AsyncIterator[LLMEvent]:
+        await self._settle()
+        stream: ThreadStream[LLMEvent] = ThreadStream(
+            self._executor,
+            job,
+            deadlines=self.deadlines,
+            where=f"{self.name} ({self.model_path or 'default'})",
+        )
+        try:
+            async for event in stream.run():
+                yield event
+        finally:
+            self._pending = stream.pending
+
+    async def load(self) -> float:
+        """Load the model now (seconds taken); otherwise the first turn loads it."""
+        await self._settle()
+        await asyncio.get_running_loop().run_in_executor(self._executor, self._load_blocking)
+        return self.load_s or 0.0
+
+    def _warm_up_blocking(self, prefix: str) -> TurnStats:
+        self._load_blocking()
+        turn = _Turn(threading.Event())
+        p_eval_ms, _ = self._perf()
+        self._complete(turn, prefix, stream=False, max_tokens=1)
+        turn.stats.prompt_eval_ms = self._perf()[0] - p_eval_ms
+        turn.stats.total_s = time.perf_counter() - turn.start
+        return turn.stats
+
+    async def warm_up(self, system_prompt: str, tools: Sequence[ToolSpec]) -> TurnStats:
+        """Load if needed and evaluate the unchanging prefix (system prompt + tools), so that
+        turns with this system prompt and these tools start from it. Call again when they change."""
+        await self._settle()
+        prefix = fmt.render_system(system_prompt, tools)
+        loop = asyncio.get_running_loop()
+        return await loop.run_in_executor(self._executor, self._warm_up_blocking, prefix)
+
+    async def reset_cache(self) -> None:
+        """Forget the evaluated prefix (the next turn evaluates its whole prompt); for benchmarks."""
+        await self._settle()
+        if self._llama is not None:
+            await asyncio.get_running_loop().run_in_executor(self._executor, self._llama.reset)
+
+    async def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> AsyncIterator[LLMEvent]:
+        if any(m.has_audio for m in messages):
+            raise LLMError(f"{self.name} takes text only; transcribe the audio first")
+        async for event in self._run(self._job(messages, tools)):
+            yield event
+
+    async def aclose(self) -> None:
+        await self._settle()
+        llama, self._llama = self._llama, None
+        if llama is not None:
+            await asyncio.get_running_loop().run_in_executor(self._executor, llama.close)
+        self._executor.shutdown(wait=True)
