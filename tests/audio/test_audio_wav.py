@@ -140,3 +140,23 @@ async def test_memory_sink_records_chunks_and_stops() -> None:
     await sink.aclose()
     with pytest.raises(AudioError, match="closed"):
         await sink.write(AudioChunk(ramp(1), MODEL_FORMAT))
+
+
+async def test_wav_source_realtime_pacing_follows_the_clock(tmp_path: Path) -> None:
+    """Each chunk is released when its last sample would have been spoken (fake clock)."""
+    write_wav(tmp_path / "s.wav", AudioChunk(ramp(4000), MODEL_FORMAT))
+    now = [100.0]
+    waits: list[float] = []
+
+    async def fake_sleep(seconds: float) -> None:
+        waits.append(seconds)
+        now[0] += seconds
+
+    source = WavSource(tmp_path / "s.wav", chunk_frames=1600, realtime=True, clock=lambda: now[0], sleep=fake_sleep)
+    released = []
+    async for chunk in source:
+        released.append((now[0], chunk.end_timestamp))
+        now[0] += 0.01  # the consumer takes 10 ms per chunk
+    assert [round(t - 100.0, 4) for t, _ in released] == [0.1, 0.2, 0.25]
+    assert all(abs((t - 100.0) - end) < 1e-9 for t, end in released)
+    assert waits == pytest.approx([0.1, 0.09, 0.04])

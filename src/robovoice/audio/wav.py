@@ -10,7 +10,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import wave
-from collections.abc import AsyncIterator, Iterator
+from collections.abc import AsyncIterator, Awaitable, Callable, Iterator
 from pathlib import Path
 from types import TracebackType
 
@@ -162,7 +162,9 @@ class WavSource:
     """Yields a WAV file as int16 chunks of `chunk_frames` frames (the last may be shorter).
 
     Timestamps start at `start_timestamp` and follow the sample count. By default chunks
-    come as fast as they are consumed; ``realtime=True`` paces them like a microphone.
+    come as fast as they are consumed; ``realtime=True`` paces them like a microphone (each
+    chunk is released when its last sample "has been spoken"), using the event loop's clock
+    and `asyncio.sleep` unless `clock`/`sleep` are given (tests inject fakes).
     """
 
     def __init__(
@@ -172,6 +174,8 @@ class WavSource:
         chunk_frames: int = 1024,
         realtime: bool = False,
         start_timestamp: float = 0.0,
+        clock: Callable[[], float] | None = None,
+        sleep: Callable[[float], Awaitable[None]] | None = None,
     ) -> None:
         if chunk_frames <= 0:
             raise AudioError(f"chunk_frames must be positive, got {chunk_frames}")
@@ -179,6 +183,8 @@ class WavSource:
         self._chunk_frames = chunk_frames
         self._realtime = realtime
         self._t0 = start_timestamp
+        self._clock = clock
+        self._sleep = sleep or asyncio.sleep
         self._format, self._total, self._blocks = _iter_wav(self.path, chunk_frames)
         self._closed = False
         self._iterated = False
@@ -198,8 +204,8 @@ class WavSource:
         return self._chunks()
 
     async def _chunks(self) -> AsyncIterator[AudioChunk]:
-        loop = asyncio.get_running_loop()
-        started = loop.time()
+        clock = self._clock or asyncio.get_running_loop().time
+        started = clock()
         frames = 0
         for block in self._blocks:
             if self._closed:
@@ -208,9 +214,9 @@ class WavSource:
             frames += chunk.num_frames
             if self._realtime:
                 # a chunk is "captured" once its last sample has been spoken
-                delay = started + frames / self._format.rate - loop.time()
+                delay = started + frames / self._format.rate - clock()
                 if delay > 0:
-                    await asyncio.sleep(delay)
+                    await self._sleep(delay)
             yield chunk
             if not self._realtime:
                 await asyncio.sleep(0)  # let other tasks run, as a real device would
