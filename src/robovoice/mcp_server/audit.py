@@ -35,8 +35,12 @@ _MAX_INLINE_DATA = 256
 
 
 def default_audit_path() -> Path:
-    """Where the audit log goes when nothing else is configured: the user's state dir."""
-    return Path.home() / ".local" / "state" / "robovoice" / "audit.jsonl"
+    """Where the audit log goes when nothing else is configured: ``audit.jsonl`` in the user's
+    state dir (``$ROBOVOICE_STATE_DIR``, else ``$XDG_STATE_HOME/robovoice``, else
+    ``~/.local/state/robovoice``; see `robovoice.config.environment`)."""
+    from robovoice.config import environment
+
+    return environment().state_dir / "audit.jsonl"
 
 
 @dataclass(frozen=True, slots=True)

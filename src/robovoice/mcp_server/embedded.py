@@ -47,32 +47,39 @@ class EmbeddedRobot:
     async def apply_setup(self, setup: str) -> None:
         """Establish a DESIGN.md §6 `setup` through the sim's own RPCs (not counted as MCP calls)."""
         if self.sim is None:
-            raise ConfigError("setups need the sim robot (open_embedded_robot without middleware_uri)")
+            raise ConfigError("setups need the sim robot (open_embedded_robot with robot='sim')")
         await self.sim.apply_setup(setup)
 
 
 @asynccontextmanager
 async def open_embedded_robot(
     *,
-    sim: bool = True,
+    robot: Literal["sim"] | None = "sim",
+    middleware: str | None = None,
     sim_speed: float = 1.0,
     sim_nodes: Collection[str] | None = None,
-    middleware_uri: str | None = None,
     manifests: Path | None = None,
     audit_log: Path | None = None,
     message_handler: MessageHandlerFnT | None = None,
     client_info: types.Implementation | None = None,
     mode: Literal["legacy", "auto"] = "legacy",
 ) -> AsyncIterator[EmbeddedRobot]:
-    """Start the robot (the sim on the in-process memory bus by default; ``sim=False`` with a
-    `middleware_uri` for a robot elsewhere), its MCP server, and a client connected to it.
-    Everything stops when the block ends."""
-    spec = RobotSpec(sim=sim, middleware_uri=middleware_uri, manifests=manifests, sim_speed=sim_speed,
+    """Start the robot, its MCP server, and an SDK client connected to it; stop it all when
+    the block ends.
+
+    ``robot="sim"`` (the default) runs the sim robot on `middleware` (default: the in-process
+    memory bus); ``robot=None`` with a `middleware` URI serves nodes that run elsewhere
+    (e.g. ``zenoh://...``, with `manifests` overriding theirs). `audit_log`: a path, or None
+    for no audit log. `message_handler` receives server notifications (list changes).
+    """
+    if robot not in ("sim", None):
+        raise ConfigError(f"unknown robot {robot!r}: the only built-in robot is 'sim'")
+    spec = RobotSpec(sim=robot == "sim", middleware_uri=middleware, manifests=manifests, sim_speed=sim_speed,
                      sim_nodes=sim_nodes, audit_log=audit_log)
-    async with open_robot(spec) as robot:
+    async with open_robot(spec) as running:
         client = Client(
-            robot.server.server, mode=mode, message_handler=message_handler,
+            running.server.server, mode=mode, message_handler=message_handler, cache=None,
             client_info=client_info or types.Implementation(name="robovoice-assistant", version="embedded"),
         )
         async with client:
-            yield EmbeddedRobot(client, robot.server, robot.middleware, robot.sim)
+            yield EmbeddedRobot(client, running.server, running.middleware, running.sim)

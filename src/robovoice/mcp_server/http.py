@@ -35,6 +35,7 @@ from starlette.routing import Route
 from starlette.types import ASGIApp, Receive, Scope, Send
 
 from robovoice.errors import ConfigError
+from robovoice.mcp_server._groups import owned_tasks
 from robovoice.mcp_server.server import RobotToolServer
 
 log = logging.getLogger(__name__)
@@ -195,7 +196,7 @@ async def http_server(
     )
     userver = _Uvicorn(config)
     try:
-        async with asyncio.TaskGroup() as group:
+        async with owned_tasks() as group:
             serving = group.create_task(userver.serve(sockets=[sock]), name="mcp-http")
             ready = group.create_task(userver.ready.wait())
             await asyncio.wait({serving, ready}, return_when=asyncio.FIRST_COMPLETED)

@@ -37,6 +37,7 @@ from robovoice.manifest import (
     format_error,
     surface_for,
 )
+from robovoice.mcp_server._groups import owned_tasks
 from robovoice.mcp_server.audit import AuditLog
 from robovoice.mcp_server.calls import ANONYMOUS, Caller, ProgressFn, ToolCalls
 from robovoice.mcp_server.notify import ListChangedNotifier
@@ -244,7 +245,7 @@ class RobotToolServer:
     async def running(self) -> AsyncIterator[RobotToolServer]:
         """Follow the middleware's presence while serving. Nodes already present are in the
         catalog (and their snapshot topics tracked) when this yields."""
-        async with asyncio.TaskGroup() as group:
+        async with owned_tasks() as group:
             follower = group.create_task(self._follow_presence(), name="mcp-presence")
             watch = await self.middleware.watch(self._on_presence)
             try:
