@@ -55,6 +55,9 @@ log = logging.getLogger(__name__)
 
 PRESENCE_SYNC_S = 3.0
 """At start, how long to wait for the nodes already present to tell what they offer."""
+MESH_SETTLE_S = 0.05
+MESH_SETTLE_MAX_S = 1.0
+"""At start in peer mode: how long the peer count must hold still, and the most to wait."""
 FEEDBACK_DRAIN_S = 0.5
 """After an action's result, how long to wait for feedback the node sent before it."""
 
@@ -132,6 +135,8 @@ class ZenohMiddleware:
         self._entities.append(session.declare_subscriber(layout.feedback_all(), bridge.handler(self._on_feedback)))
         self._presence = Presence(session, layout, bridge, self._on_node_left)
         self._presence.start()
+        if self._settings.mode == "peer":
+            await _settle(session)
         await self._presence.sync(PRESENCE_SYNC_S)
         log.info("zenoh middleware up (%s, robot %r, %d nodes present)", self._settings.describe(),
                  self._settings.robot, len(self._presence.nodes()))
@@ -345,6 +350,25 @@ class ZenohMiddleware:
         self._open_session()
         assert self._presence is not None
         return self._presence.watch(callback)
+
+
+async def _settle(session: zenoh.Session) -> None:
+    """Let the peer mesh form: peers learnt from the ones we connected to (gossip) connect
+    within milliseconds of opening; wait until the number of peers holds still for a moment,
+    so the presence sync sees the nodes already running."""
+    loop = asyncio.get_running_loop()
+    last, since = -1, loop.time()
+    try:
+        async with asyncio.timeout(MESH_SETTLE_MAX_S):
+            while True:
+                count, now = len(session.info.peers_zid()), loop.time()
+                if count != last:
+                    last, since = count, now
+                elif now - since >= MESH_SETTLE_S:
+                    return
+                await asyncio.sleep(0.01)
+    except TimeoutError:
+        log.debug("the peer mesh was still changing after %g s", MESH_SETTLE_MAX_S)
 
 
 def _brief(exc: BaseException) -> str:
