@@ -12,7 +12,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from robovoice.llm.base import ChatMessage, TextDelta, ToolCallRequested, ToolSpec
+from robovoice.llm.base import ChatMessage, Deadlines, TextDelta, ToolCallRequested, ToolSpec
 from robovoice.llm.local import LocalLlamaBackend
 
 SYSTEM_PROMPT = (
@@ -47,6 +47,10 @@ UTTERANCES: tuple[str, ...] = (
     "Call my daughter Anna.",
     "What is your name?",
 )
+
+
+# A benchmark measures slowness rather than failing on it (a cold 12-tool prompt on a busy machine).
+BENCH_DEADLINES = Deadlines(first_token_s=600.0, idle_s=120.0, total_s=1200.0)
 
 
 @dataclass(frozen=True, slots=True)
@@ -123,7 +127,7 @@ async def bench_local(
     loaded and closed again.
     """
     own = backend is None
-    llm = backend if backend is not None else LocalLlamaBackend()
+    llm = backend if backend is not None else LocalLlamaBackend(deadlines=BENCH_DEADLINES)
     try:
         load_s = await llm.load()
         await llm.reset_cache()

@@ -35,6 +35,7 @@ from robovoice.errors import LLMError, MissingDependencyError
 from robovoice.llm import chatml_tools as fmt
 from robovoice.llm.base import (
     ChatMessage,
+    DeadlineExceededError,
     Deadlines,
     Finished,
     LLMEvent,
@@ -278,7 +279,13 @@ class LocalLlamaBackend:
             await self._pending
 
     async def _run(self, job: Callable[[threading.Event], Iterator[LLMEvent]]) -> AsyncIterator[LLMEvent]:
-        await self._settle()
+        if self._pending is not None and not self._pending.done():
+            # Still evaluating an abandoned turn's prompt: that wait counts against this turn.
+            try:
+                await asyncio.wait_for(asyncio.shield(self._pending), self.deadlines.first_token_s)
+            except TimeoutError as exc:
+                where = f"{self.name} (busy finishing an abandoned turn)"
+                raise DeadlineExceededError("first_token", self.deadlines.first_token_s, where) from exc
         stream: ThreadStream[LLMEvent] = ThreadStream(
             self._executor,
             job,

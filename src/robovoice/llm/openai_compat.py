@@ -63,6 +63,7 @@ class _TurnState:
     calls: dict[int, _PartialCall] = field(default_factory=dict)
     finish_reason: str | None = None
     usage: Usage | None = None
+    progress: int = 0  # chunks that carried model output (content, reasoning, calls, finish)
 
     def final_events(self, url: str) -> Iterator[LLMEvent]:
         """The assembled tool calls (in index order), then `Finished`."""
@@ -104,9 +105,12 @@ def _usage_from(raw: Any) -> Usage | None:
     )
 
 
+_MODEL_OUTPUT_KEYS = ("content", "tool_calls", "reasoning_content", "reasoning")
+
+
 def apply_chunk(chunk: Mapping[str, Any], state: _TurnState) -> str:
     """Fold one ``chat.completion.chunk`` into ``state``; returns its text delta ('' if none)."""
-    if "error" in chunk or chunk.get("object") == "error":
+    if chunk.get("error") or chunk.get("object") == "error":
         raise LLMError(f"server error in stream: {error_message_from_body(json.dumps(chunk).encode())}")
     usage = _usage_from(chunk.get("usage"))
     if usage is not None:
@@ -115,9 +119,12 @@ def apply_chunk(chunk: Mapping[str, Any], state: _TurnState) -> str:
     if not choices:
         return ""
     choice = choices[0]
+    delta = choice.get("delta") or {}
     if choice.get("finish_reason"):
         state.finish_reason = str(choice["finish_reason"])
-    delta = choice.get("delta") or {}
+    # Anything the model produced (reasoning too, which is not spoken) shows it is alive.
+    if choice.get("finish_reason") or any(delta.get(k) for k in _MODEL_OUTPUT_KEYS):
+        state.progress += 1
     for raw_call in delta.get("tool_calls") or []:
         index = int(raw_call.get("index", len(state.calls)))
         call = state.calls.setdefault(index, _PartialCall())
@@ -289,11 +296,11 @@ class OpenAICompatBackend:
                     continue
                 if "[DONE]" in chunk:
                     break
-                calls_before = len(state.calls)
+                progress = state.progress
                 text = apply_chunk(chunk, state)
-                if phase is first and (text or len(state.calls) > calls_before or state.finish_reason):
-                    log.debug("%s: first token after %.3f s", self.name, time.monotonic() - start)
-                if phase is not first or text or len(state.calls) > calls_before or state.finish_reason:
+                if state.progress > progress:
+                    if phase is first:
+                        log.debug("%s: first token after %.3f s", self.name, time.monotonic() - start)
                     phase = _Phase("idle", idle_s, time.monotonic() + idle_s)
                 if text:
                     yield TextDelta(text)
