@@ -25,10 +25,13 @@ def test_strip_wake_phrase(text: str, expected: str) -> None:
     ("ids", "drop"),
     [
         ([1, 2, 3], 0),
+        ([7, 7], 0),
         ([7, 7, 7], 2),
         ([1, 2, 3, 4, 5, 4, 5, 4, 5], 4),
         ([1, 2, 3, 1, 2, 3, 1, 2], 0),
-        ([9, 1, 2, 3] * 3, 8),
+        ([9, 1, 2, 3, 4, 1, 2, 3, 4], 4),
+        ([9, 8, 1, 2, 3, 4, 5, 6, 1, 2, 3, 4, 5, 6], 6),
+        ([1, 2, 3, 4, 5, 6, 7, 8], 0),
     ],
 )
 def test_moonshine_repetition_guard(ids: list[int], drop: int) -> None:

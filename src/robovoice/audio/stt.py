@@ -66,12 +66,14 @@ def _to_model_input(audio: AudioChunk) -> np.ndarray:
     return np.ascontiguousarray(as_float32(convert(audio, fmt).samples), dtype=np.float32)
 
 
-def _repetition(ids: list[int], times: int = 3, longest: int = 12) -> int:
-    """If `ids` ends with the same block of 1..`longest` tokens repeated `times` times (a
-    decoder stuck in a loop, typical on noise), the number of tokens to drop; else 0."""
+def _repetition(ids: list[int], longest: int = 16) -> int:
+    """If `ids` ends with a loop -- a block of 1-3 tokens three times in a row, or of 4 to
+    `longest` tokens twice -- the number of tokens to drop to keep one copy; else 0. (The
+    decoder gets stuck like this on noise; real commands rarely repeat 4+ tokens.)"""
     for k in range(1, longest + 1):
+        times = 3 if k < 4 else 2
         if len(ids) < k * times:
-            break
+            continue
         block = ids[-k:]
         if all(ids[-(i + 1) * k : len(ids) - i * k] == block for i in range(1, times)):
             return k * (times - 1)
@@ -118,7 +120,7 @@ class MoonshineTranscriber:
     Thread-safe (calls are serialised). Clips shorter than `min_audio_s` give an empty
     transcript without running the model; at most `max_tokens_per_s` tokens per second of
     audio are generated (Moonshine's own guard against repetition loops), and decoding also
-    stops when the same phrase comes out three times in a row.
+    stops when it starts repeating itself (see `_repetition`).
     """
 
     _BOS = 1
