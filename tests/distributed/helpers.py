@@ -101,3 +101,10 @@ async def until(condition: Callable[[], bool], bound: float = BOUND_S, what: str
                 await asyncio.sleep(0.01)
     except TimeoutError:
         pytest.fail(f"{what} did not hold within {bound} s")
+
+
+def sim_argv(uri: str, *nodes: str, speed: float = 1.0) -> list[str]:
+    args = ["sim", "--middleware", uri, "--speed", str(speed)]
+    for node in nodes:
+        args += ["--node", node]
+    return robovoice(*args)
