@@ -59,6 +59,8 @@ MESH_SETTLE_S = 0.05
 MESH_SETTLE_MAX_S = 1.0
 """At start in peer mode: how long the peer count must hold still, and the most to wait."""
 FEEDBACK_DRAIN_S = 0.5
+TOPIC_BACKLOG = 1000
+"""Messages of one topic that may wait for the event loop; beyond, the oldest are dropped."""
 """After an action's result, how long to wait for feedback the node sent before it."""
 
 
@@ -338,8 +340,8 @@ class ZenohMiddleware:
     async def subscribe(self, topic: str, callback: Callable[[Message], None]) -> TopicSubscription:
         session, bridge = self._open_session()
         subscription = TopicSubscription(self, topic, callback)
-        subscription._subscriber = session.declare_subscriber(self._layout.topic(topic),
-                                                              bridge.handler(subscription.deliver))
+        handler = bridge.stream(subscription.deliver, limit=TOPIC_BACKLOG, what=f"topic {topic!r}")
+        subscription._subscriber = session.declare_subscriber(self._layout.topic(topic), handler)
         self._subscriptions.add(subscription)
         return subscription
 

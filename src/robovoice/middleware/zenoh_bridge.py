@@ -1,17 +1,19 @@
 """The one place where Zenoh's threads hand work to the event loop.
 
 Zenoh runs callbacks (samples, queries, replies, liveliness changes) on its own threads.
-Every handler the Zenoh adapter gives to Zenoh comes from `LoopBridge.handler`: the
-callback only calls `loop.call_soon_threadsafe`, and the real work runs on the event loop
-that started the adapter, as the Middleware protocol promises.
+Every handler the Zenoh adapter gives to Zenoh comes from `LoopBridge.handler` (or `.stream`,
+for topics: bounded and batched): the callback only calls `loop.call_soon_threadsafe`, and the
+real work runs on the event loop that started the adapter, as the Middleware protocol promises.
 """
 
 from __future__ import annotations
 
 import asyncio
+import collections
 import logging
+import threading
 from collections.abc import Callable
-from typing import Protocol, TypeVar, cast
+from typing import Generic, Protocol, TypeVar, cast
 
 import zenoh
 
@@ -54,6 +56,49 @@ class LoopBridge:
 
         # indirect=False: run on Zenoh's thread; posting is all we do there, so no extra thread
         return zenoh.handlers.Callback(item, drop, indirect=False)
+
+
+    def stream(self, on_item: Callable[[T], object], *, limit: int, what: str) -> zenoh.handlers.Callback[T]:
+        """A handler for a stream of samples (a topic): items wait in a bounded buffer and
+        are handed to `on_item` on the loop in batches, one loop wake-up per batch. If the
+        loop falls `limit` items behind, the oldest are dropped (and counted in a warning)
+        rather than letting memory grow."""
+        batch = _Batch(self, on_item, limit, what)
+        return zenoh.handlers.Callback(batch.push, indirect=False)
+
+
+class _Batch(Generic[T]):
+    """The bounded buffer behind `LoopBridge.stream`."""
+
+    def __init__(self, bridge: LoopBridge, on_item: Callable[[T], object], limit: int, what: str) -> None:
+        self._bridge = bridge
+        self._on_item = on_item
+        self._what = what
+        self._items: collections.deque[T] = collections.deque(maxlen=limit)
+        self._lock = threading.Lock()
+        self._scheduled = False
+        self._dropped = 0
+
+    def push(self, item: T) -> None:  # on a Zenoh thread
+        with self._lock:
+            if len(self._items) == self._items.maxlen:
+                self._dropped += 1
+            self._items.append(item)
+            if self._scheduled:
+                return
+            self._scheduled = True
+        self._bridge.post(self._drain)
+
+    def _drain(self) -> None:  # on the loop
+        with self._lock:
+            items = list(self._items)
+            self._items.clear()
+            self._scheduled = False
+            dropped, self._dropped = self._dropped, 0
+        if dropped:
+            log.warning("%s: the event loop fell behind; dropped the %d oldest messages", self._what, dropped)
+        for item in items:
+            self._on_item(item)
 
 
 # --- typed shims: zenoh's stubs leave these methods without a return type ----------------
