@@ -40,6 +40,7 @@ from robovoice.mcp_server import (
     open_robot,
     read_token_file,
     serve_stdio,
+    wait_for_snapshots,
     wait_for_tools,
 )
 from robovoice.middleware import open_middleware
@@ -48,6 +49,7 @@ from robovoice.sim import start_sim_robot
 DEFAULT_PORT = 8765
 _FIRST_SENTENCE = re.compile(r"(?<![A-Z][a-z])\.\s")
 DEFAULT_WAIT_S = 3.0
+SNAPSHOT_WAIT_S = 5.0  # `call` of a snapshot tool right after start-up waits for the first message
 
 
 # --- arguments ---------------------------------------------------------------------------
@@ -153,20 +155,35 @@ def parse_arguments(pairs: Sequence[str]) -> dict[str, Any]:
 # --- running -----------------------------------------------------------------------------
 
 
-def _run(main: Callable[[], Awaitable[int]]) -> int:
-    """Run `main`; SIGTERM (and Ctrl-C) stop it cleanly: the robot is always shut down."""
+_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+def _run(main: Callable[[asyncio.Event], Awaitable[int]], *, graceful: bool = False) -> int:
+    """Run `main(stop)`, the robot always shut down on the way out. On SIGINT/SIGTERM a
+    `graceful` command (serve) sees `stop` set and ends by itself; otherwise, or on a second
+    signal, it is cancelled (exit status 130)."""
 
     async def guarded() -> int:
         loop = asyncio.get_running_loop()
         task = asyncio.current_task()
         assert task is not None
-        loop.add_signal_handler(signal.SIGTERM, task.cancel)
+        stop = asyncio.Event()
+
+        def on_signal() -> None:
+            if graceful and not stop.is_set():
+                stop.set()
+            else:
+                task.cancel()
+
+        for signum in _SIGNALS:
+            loop.add_signal_handler(signum, on_signal)
         try:
-            return await main()
+            return await main(stop)
         except asyncio.CancelledError:
-            return 0
+            return 130
         finally:
-            loop.remove_signal_handler(signal.SIGTERM)
+            for signum in _SIGNALS:
+                loop.remove_signal_handler(signum)
 
     return asyncio.run(guarded())
 
@@ -206,18 +223,23 @@ def run_serve(args: argparse.Namespace) -> int:
         check_bind(args.host, token)  # before starting anything
     elif token is not None:
         raise ConfigError("--token-file applies to --transport http only")
-    return _run(lambda: _serve(args, token))
+    return _run(lambda stop: _serve(args, token, stop), graceful=True)
 
 
-async def _serve(args: argparse.Namespace, token: str | None) -> int:
+async def _serve(args: argparse.Namespace, token: str | None, stop: asyncio.Event) -> int:
     async with _robot(args, audit=True) as robot:
         _print_manifest_errors(robot, sys.stderr)
         if args.transport == "stdio":
-            await serve_stdio(robot.server)
+            async with asyncio.TaskGroup() as group:  # until the client closes stdin, or a signal
+                serving = group.create_task(serve_stdio(robot.server))
+                stopping = group.create_task(stop.wait())
+                await asyncio.wait({serving, stopping}, return_when=asyncio.FIRST_COMPLETED)
+                serving.cancel()
+                stopping.cancel()
             return 0
         async with http_server(robot.server, host=args.host, port=args.port, token=token) as endpoint:
             print(f"robovoice serve: ready: {endpoint.url} ({len(robot.server.tools())} tools)", flush=True)
-            await asyncio.Event().wait()  # until SIGINT/SIGTERM
+            await stop.wait()
     return 0
 
 
@@ -225,7 +247,7 @@ async def _serve(args: argparse.Namespace, token: str | None) -> int:
 
 
 def run_tools(args: argparse.Namespace) -> int:
-    return _run(lambda: _tools(args))
+    return _run(lambda stop: _tools(args))
 
 
 async def _tools(args: argparse.Namespace) -> int:
@@ -250,7 +272,7 @@ async def _tools(args: argparse.Namespace) -> int:
 
 def run_call(args: argparse.Namespace) -> int:
     arguments = parse_arguments(args.arguments)
-    return _run(lambda: _call(args, arguments))
+    return _run(lambda stop: _call(args, arguments))
 
 
 def _describe(result: types.CallToolResult) -> str:
@@ -267,6 +289,7 @@ def _describe(result: types.CallToolResult) -> str:
 
 async def _call(args: argparse.Namespace, arguments: dict[str, Any]) -> int:
     async with _robot(args, audit=True) as robot, _client(robot, "call") as client:
+        await wait_for_snapshots(robot.server, names=[args.tool], timeout=SNAPSHOT_WAIT_S)
         progress_out = sys.stderr
 
         async def show_progress(progress: float, total: float | None, message: str | None) -> None:
@@ -282,7 +305,7 @@ async def _call(args: argparse.Namespace, arguments: dict[str, Any]) -> int:
 
 
 def run_check(args: argparse.Namespace) -> int:
-    return _run(lambda: _check(args))
+    return _run(lambda stop: _check(args))
 
 
 async def _check(args: argparse.Namespace) -> int:

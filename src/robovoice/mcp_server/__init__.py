@@ -14,7 +14,7 @@ from robovoice.mcp_server.audit import AuditLog, AuditRecord, default_audit_path
 from robovoice.mcp_server.calls import Caller
 from robovoice.mcp_server.embedded import EmbeddedRobot, open_embedded_robot
 from robovoice.mcp_server.http import HttpEndpoint, build_http_app, check_bind, http_server, read_token_file
-from robovoice.mcp_server.runtime import Robot, RobotSpec, open_robot, wait_for_tools
+from robovoice.mcp_server.runtime import Robot, RobotSpec, open_robot, wait_for_snapshots, wait_for_tools
 from robovoice.mcp_server.server import RobotToolServer
 from robovoice.mcp_server.stdio import serve_stdio
 
@@ -35,5 +35,6 @@ __all__ = [
     "open_robot",
     "read_token_file",
     "serve_stdio",
+    "wait_for_snapshots",
     "wait_for_tools",
 ]

@@ -27,7 +27,8 @@ from mcp import Client
 from mcp.client.session import MessageHandlerFnT
 
 from robovoice.errors import ConfigError
-from robovoice.mcp_server.runtime import RobotSpec, open_robot
+from robovoice.mcp_server._groups import unwrapped
+from robovoice.mcp_server.runtime import RobotSpec, open_robot, wait_for_snapshots
 from robovoice.mcp_server.server import RobotToolServer
 from robovoice.middleware import Middleware
 from robovoice.sim import SimRobot
@@ -63,6 +64,7 @@ async def open_embedded_robot(
     message_handler: MessageHandlerFnT | None = None,
     client_info: types.Implementation | None = None,
     mode: Literal["legacy", "auto"] = "legacy",
+    snapshot_warmup_s: float = 2.0,
 ) -> AsyncIterator[EmbeddedRobot]:
     """Start the robot, its MCP server, and an SDK client connected to it; stop it all when
     the block ends.
@@ -71,15 +73,18 @@ async def open_embedded_robot(
     memory bus); ``robot=None`` with a `middleware` URI serves nodes that run elsewhere
     (e.g. ``zenoh://...``, with `manifests` overriding theirs). `audit_log`: a path, or None
     for no audit log. `message_handler` receives server notifications (list changes).
+    It yields once every snapshot tool has a value, or after `snapshot_warmup_s` at most.
     """
     if robot not in ("sim", None):
         raise ConfigError(f"unknown robot {robot!r}: the only built-in robot is 'sim'")
     spec = RobotSpec(sim=robot == "sim", middleware_uri=middleware, manifests=manifests, sim_speed=sim_speed,
                      sim_nodes=sim_nodes, audit_log=audit_log)
-    async with open_robot(spec) as running:
+    async with unwrapped(), open_robot(spec) as running:
+        await wait_for_snapshots(running.server, timeout=snapshot_warmup_s)
         client = Client(
             running.server.server, mode=mode, message_handler=message_handler, cache=None,
             client_info=client_info or types.Implementation(name="robovoice-assistant", version="embedded"),
         )
         async with client:
+            await client.list_tools()  # the session is registered for list changes once this returns
             yield EmbeddedRobot(client, running.server, running.middleware, running.sim)

@@ -191,7 +191,7 @@ async def http_server(
     sock = _bind(host, port)
     endpoint = HttpEndpoint(host, sock.getsockname()[1])
     config = uvicorn.Config(
-        build_http_app(server, host=host, token=token), log_level="warning", lifespan="on",
+        build_http_app(server, host=host, token=token), log_config=None, lifespan="on",
         timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S, **uvicorn_options,
     )
     userver = _Uvicorn(config)

@@ -10,17 +10,20 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import math
 from collections.abc import AsyncIterator, Collection
 from contextlib import AsyncExitStack, asynccontextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
 from robovoice.errors import ConfigError
-from robovoice.manifest import ManifestSet, format_error, load_manifest_dir
+from robovoice.manifest import ManifestSet, SnapshotEntry, format_error, load_manifest_dir
 from robovoice.mcp_server.audit import AuditLog
 from robovoice.mcp_server.server import RobotToolServer
 from robovoice.middleware import Middleware, open_middleware
+from robovoice.middleware.base import Message
 from robovoice.sim import SimRobot, start_sim_robot
+from robovoice.snapshot import SnapshotStore, UntrackedTopicError
 
 log = logging.getLogger(__name__)
 
@@ -88,6 +91,46 @@ async def open_robot(spec: RobotSpec) -> AsyncIterator[Robot]:
         server = RobotToolServer(middleware, manifests=override, audit=audit)
         await stack.enter_async_context(server.running())
         yield Robot(middleware, server, sim)
+
+
+async def wait_for_snapshots(server: RobotToolServer, *, names: Collection[str] | None = None,
+                             timeout: float) -> None:
+    """Wait (at most `timeout` s) until the snapshot tools `names` (default: all) have a value.
+
+    A node's first message can go out before the server has subscribed to its topic (the
+    subscription follows the node's announcement); a one-shot caller (``robovoice call``, a
+    freshly started embedded robot) waits here instead of reading "no message received yet".
+    """
+    topics: set[str] = set()
+    for entry in server.catalog.tools():
+        if isinstance(entry, SnapshotEntry) and (names is None or entry.name in names):
+            topics.add(entry.topic)
+    pending = {t for t in topics if not _has_value(server.snapshots, t)}
+    if not pending:
+        return
+    arrived = asyncio.Event()
+
+    def receive(message: Message) -> None:
+        pending.discard(message.topic)
+        if not pending:
+            arrived.set()
+
+    subscriptions = [await server.middleware.subscribe(topic, receive) for topic in sorted(pending)]
+    try:
+        async with asyncio.timeout(timeout):
+            await arrived.wait()
+    except TimeoutError:
+        log.info("no message yet on %s after %g s", ", ".join(sorted(pending)), timeout)
+    finally:
+        for subscription in subscriptions:
+            subscription.close()
+
+
+def _has_value(store: SnapshotStore, topic: str) -> bool:
+    try:
+        return store.read(topic, math.inf).has_value
+    except UntrackedTopicError:
+        return False
 
 
 async def wait_for_tools(server: RobotToolServer, *, names: Collection[str] = (), timeout: float) -> None:
