@@ -1,0 +1,313 @@
+"""The always-on front end: echo cancellation, wake word and VAD over 80 ms frames.
+
+`FrontEnd.process(chunk)` is blocking (it runs the models) and is called on the front
+end's own executor. Per 80 ms frame of 16 kHz microphone audio it
+
+1. cancels the robot's own playback (`echo.EchoCanceller` against `PlaybackReference`),
+2. raises the wake threshold while anything plays (robot speech, a call's remote voice),
+3. runs the wake word spotter and the VAD segmenter on the cleaned signal,
+4. while something plays, also scores the *playback itself* with a second wake word
+   detector: a wake word heard on the microphone while the playback said it (the robot's
+   own "Hey Jarvis", or a remote caller's) is the robot's own voice and is rejected,
+   however well or badly the echo canceller has converged;
+5. judges every utterance that overlaps playback with `EchoMeter`: is it the person
+   (louder than what the echo canceller leaves) or what is left of the robot's own voice?
+
+It returns `FrontEndResult`s carrying the verdicts; all decisions about turns are the
+pipeline's (`turns.TurnTaking`).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from collections import deque
+from dataclasses import dataclass
+
+import numpy as np
+
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, Framer, as_float32, float32_to_int16
+from robovoice.audio.vad import SpeechEnded, SpeechSegmenter, SpeechStarted
+from robovoice.audio.wake import WakeWordDetector, WakeWordSpotter
+from robovoice.errors import AudioError
+from robovoice.voice.config import EchoConfig
+from robovoice.voice.echo import BlockStats, EchoCanceller, PlaybackReference
+
+log = logging.getLogger(__name__)
+
+FRAME_SAMPLES = 1280  # 80 ms: one wake word frame, five echo canceller blocks
+_REF_ACTIVE = 1e-8  # reference power above which the speaker counts as playing (-80 dBFS)
+
+
+@dataclass(frozen=True, slots=True)
+class HeardWake:
+    score: float
+    at: float
+    during_playback: bool
+    near_end: bool  # false: the robot's own playback, not the person
+    playback_score: float = 0.0  # the playback's own wake score around `at`
+
+
+@dataclass(frozen=True, slots=True)
+class HeardSpeechStart:
+    at: float
+
+
+@dataclass(frozen=True, slots=True)
+class HeardPause:
+    """Speech went quiet at `at` after starting at `onset`: the utterance may be over (the
+    end of turn is confirmed only after the end-of-turn silence). `audio` is the utterance
+    so far, so speech-to-text can start now, speculatively, inside that silence."""
+
+    onset: float
+    at: float
+    audio: AudioChunk
+
+
+@dataclass(frozen=True, slots=True)
+class HeardUtterance:
+    """A VAD utterance (echo-cancelled 16 kHz audio with pre-roll), and whether it came
+    while something played (`playback_share`: fraction of its time) and is louder than
+    the echo that is left (`near_end`)."""
+
+    audio: AudioChunk
+    start: float
+    end: float
+    truncated: bool
+    playback_share: float
+    near_end: bool
+
+    @property
+    def duration_s(self) -> float:
+        return self.end - self.start
+
+
+FrontEndEvent = HeardWake | HeardSpeechStart | HeardPause | HeardUtterance
+
+
+@dataclass(frozen=True, slots=True)
+class FrontEndResult:
+    events: tuple[FrontEndEvent, ...]
+    now: float  # stream time at the end of the processed audio
+    playing: bool  # playback (or its tail) at `now`
+    compute_s: float
+
+
+class EchoMeter:
+    """Remembers the echo canceller's block levels for the last seconds and judges windows.
+
+    The *leak* is how much of the echo the canceller leaves, as residual/mic power, taken
+    as the 10th percentile over recent blocks with playback (far-end-only blocks dominate
+    the low end). Before enough blocks were seen the leak is taken as 1 (no cancellation
+    assumed), so nothing heard during the first playback counts as the person unless the
+    echo canceller has proved itself.
+    """
+
+    def __init__(self, *, margin_db: float = 6.0, history_s: float = 12.0, leak_window_s: float = 8.0) -> None:
+        self.margin = 10 ** (margin_db / 10)
+        self._blocks: deque[tuple[float, BlockStats]] = deque()
+        self._history_s = history_s
+        self._leak_window_s = leak_window_s
+        self._leak = 1.0
+        self._leak_at = -math.inf
+
+    def add(self, t: float, stats: BlockStats) -> None:
+        self._blocks.append((t, stats))
+        while self._blocks and t - self._blocks[0][0] > self._history_s:
+            self._blocks.popleft()
+
+    def leak(self, now: float) -> float:
+        if now - self._leak_at < 0.25:
+            return self._leak
+        ratios = [
+            s.residual / s.mic
+            for t, s in self._blocks
+            if now - t <= self._leak_window_s and s.reference > _REF_ACTIVE and s.mic > 1e-7
+        ]
+        self._leak = float(np.percentile(ratios, 10)) if len(ratios) >= 25 else 1.0
+        self._leak_at = now
+        return self._leak
+
+    def judge(self, start: float, end: float) -> tuple[float, bool]:
+        """(share of the window with playback, whether the person is audible over the echo)."""
+        inside = [s for t, s in self._blocks if start - 0.016 <= t <= end]
+        if not inside:
+            return 0.0, True
+        playing = [s for s in inside if s.reference > _REF_ACTIVE]
+        share = len(playing) / len(inside)
+        if not playing:
+            return share, True
+        residual = sum(s.residual for s in playing)
+        mic = sum(s.mic for s in playing) + 1e-12
+        return share, residual / mic > self.leak(end) * self.margin
+
+
+class FrontEnd:
+    """Echo cancellation + wake word + VAD for one microphone stream (see module docstring)."""
+
+    def __init__(
+        self,
+        spotter: WakeWordSpotter,
+        segmenter: SpeechSegmenter,
+        reference: PlaybackReference | None = None,
+        echo: EchoConfig | None = None,
+        *,
+        playback_detector: WakeWordDetector | None = None,
+        playback_tail_s: float = 0.3,
+    ) -> None:
+        self.spotter = spotter
+        self.segmenter = segmenter
+        self.reference = reference
+        self._playback_detector = playback_detector if reference is not None else None
+        self._playback_scores: deque[tuple[float, float]] = deque()
+        self._playback_idle_frames = 0
+        self.config = echo or EchoConfig()
+        self._aec = (
+            EchoCanceller(partitions=self.config.partitions, step=self.config.step)
+            if reference is not None and self.config.enabled
+            else None
+        )
+        self.meter = EchoMeter(margin_db=self.config.near_end_margin_db)
+        self._framer = Framer(FRAME_SAMPLES)
+        self._tail = playback_tail_s
+        self._last_playback = -math.inf
+        self.external_playback = False  # e.g. a call's remote voice played outside this pipeline
+        self.now = 0.0
+        self._recent: deque[AudioChunk] = deque()  # cleaned audio of the current utterance + pre-roll
+        self._onset: float | None = None
+        self._paused = False
+
+    def reset(self) -> None:
+        """Fresh state for an independent stream (a new evaluation clip)."""
+        self.spotter.reset()
+        self.segmenter.reset()
+        self._framer.reset()
+        if self._aec is not None:
+            self._aec.reset()
+        self.meter = EchoMeter(margin_db=self.config.near_end_margin_db)
+        self._last_playback = -math.inf
+        self._recent.clear()
+        self._onset = None
+        self._paused = False
+        self._playback_scores.clear()
+        if self._playback_detector is not None:
+            self._playback_detector.reset()
+
+    def playing_at(self, t: float) -> bool:
+        return self.external_playback or t - self._last_playback <= self._tail
+
+    def process(self, chunk: AudioChunk) -> FrontEndResult:
+        """Blocking: run every complete 80 ms frame of `chunk` (16 kHz mono)."""
+        if chunk.format.rate != MODEL_FORMAT.rate or chunk.format.channels != 1:
+            raise AudioError(f"the front end takes 16 kHz mono audio, got {chunk.format}")
+        started = time.perf_counter()
+        events: list[FrontEndEvent] = []
+        for frame in self._framer.push(chunk):
+            events.extend(self._frame(frame))
+        self.now = chunk.end_timestamp
+        return FrontEndResult(tuple(events), self.now, self.playing_at(self.now), time.perf_counter() - started)
+
+    def flush(self) -> FrontEndResult:
+        """End of the stream: close an utterance in progress."""
+        events: list[FrontEndEvent] = []
+        for event in self.segmenter.flush():
+            if isinstance(event, SpeechEnded):
+                events.append(self._utterance(event))
+        return FrontEndResult(tuple(events), self.now, False, 0.0)
+
+    def _frame(self, frame: AudioChunk) -> list[FrontEndEvent]:
+        t0, t1 = frame.timestamp, frame.end_timestamp
+        cleaned = frame
+        if self.reference is not None:
+            ref = self.reference.window(t0, FRAME_SAMPLES)
+            self._score_playback(ref, t1)
+            if self._aec is not None:
+                out, stats = self._aec.process(as_float32(frame.samples), ref)
+                block_s = self._aec.block / MODEL_FORMAT.rate
+                for i, s in enumerate(stats):
+                    self.meter.add(t0 + (i + 1) * block_s, s)
+                    if s.reference > _REF_ACTIVE:
+                        self._last_playback = t0 + (i + 1) * block_s
+                cleaned = AudioChunk(float32_to_int16(out), MODEL_FORMAT, t0)
+            elif float(np.mean(ref * ref)) > _REF_ACTIVE:
+                self._last_playback = t1
+        playing = self.playing_at(t1)
+        self.spotter.decider.set_threshold(self.config.playback_wake_threshold if playing else None)
+        events: list[FrontEndEvent] = []
+        for wake in self.spotter.feed(cleaned):
+            during = self.playing_at(wake.timestamp)
+            near, own = True, 0.0
+            if during:
+                own = self._playback_score(wake.timestamp)
+                if self._playback_detector is not None:
+                    near = own < self.config.playback_match_score
+                else:  # no detector on the playback: fall back on the echo levels
+                    _, near = self.meter.judge(wake.timestamp - 1.0, wake.timestamp)
+            events.append(HeardWake(wake.score, wake.timestamp, during, near, own))
+        self._remember(cleaned)
+        for vad_event in self.segmenter.feed(cleaned):
+            if isinstance(vad_event, SpeechStarted):
+                self._onset, self._paused = vad_event.timestamp, False
+                events.append(HeardSpeechStart(vad_event.timestamp))
+            else:
+                self._onset = None
+                events.append(self._utterance(vad_event))
+        pause = self._pause(t1)
+        if pause is not None:
+            events.append(pause)
+        return events
+
+    def _remember(self, frame: AudioChunk) -> None:
+        keep_s = self.segmenter.endpointer.config.max_utterance_s + 1.0
+        self._recent.append(frame)
+        while self._recent and frame.end_timestamp - self._recent[0].timestamp > keep_s:
+            self._recent.popleft()
+
+    def _pause(self, now: float) -> HeardPause | None:
+        """A `HeardPause` on the first quiet frame of an utterance in progress."""
+        endpointer = self.segmenter.endpointer
+        if self._onset is None or not endpointer.in_speech:
+            return None
+        quiet = self.segmenter.last_probability < endpointer.config.stop_threshold
+        if not quiet:
+            self._paused = False
+            return None
+        if self._paused:
+            return None
+        self._paused = True
+        start = self._onset - endpointer.config.pre_roll_s
+        frames = [f for f in self._recent if f.end_timestamp > start]
+        if not frames:
+            return None
+        audio = AudioChunk(np.concatenate([f.samples for f in frames]), MODEL_FORMAT, frames[0].timestamp)
+        return HeardPause(self._onset, now, audio)
+
+    def _score_playback(self, ref: np.ndarray, t1: float) -> None:
+        """Run the playback through its own wake word detector while anything plays."""
+        detector = self._playback_detector
+        if detector is None:
+            return
+        active = float(np.mean(ref * ref)) > _REF_ACTIVE
+        if not active:
+            self._playback_idle_frames += 1
+            if self._playback_idle_frames * FRAME_SAMPLES / MODEL_FORMAT.rate > 2.0:
+                return  # long silent: nothing to score (reset when playback resumes)
+        else:
+            if self._playback_idle_frames * FRAME_SAMPLES / MODEL_FORMAT.rate > 2.0:
+                detector.reset()
+            self._playback_idle_frames = 0
+        score = detector.process(float32_to_int16(ref))
+        self._playback_scores.append((t1, score))
+        while self._playback_scores and t1 - self._playback_scores[0][0] > 3.0:
+            self._playback_scores.popleft()
+
+    def _playback_score(self, at: float) -> float:
+        """The playback's highest wake score in the 1.2 s up to `at` (and one frame after)."""
+        return max((s for t, s in self._playback_scores if at - 1.2 <= t <= at + 0.1), default=0.0)
+
+    def _utterance(self, ended: SpeechEnded) -> HeardUtterance:
+        share, near = self.meter.judge(ended.start, ended.end)
+        if self.external_playback:  # played outside this pipeline: no reference to judge by
+            share = 1.0
+        return HeardUtterance(ended.audio, ended.start, ended.end, ended.truncated, share, near)

@@ -1,0 +1,60 @@
+"""The voice models the pipeline needs, and loading the real ones (in parallel, warmed up)."""
+
+from __future__ import annotations
+
+import logging
+import time
+from concurrent.futures import Future, ThreadPoolExecutor
+from dataclasses import dataclass
+
+from robovoice.audio.stt import Transcriber
+from robovoice.audio.tts import Synthesizer
+from robovoice.audio.vad import VADModel
+from robovoice.audio.wake import WakeWordDetector
+
+log = logging.getLogger(__name__)
+
+
+@dataclass(frozen=True, slots=True)
+class VoiceModels:
+    """`stt` may be None when the backend takes audio and no local stop check is wanted."""
+
+    wake: WakeWordDetector
+    vad: VADModel
+    stt: Transcriber | None
+    tts: Synthesizer
+    playback_wake: WakeWordDetector | None = None  # a second instance, scoring the playback
+
+
+def load_voice_models(
+    *, wake_model: str = "hey_jarvis", stt: str = "moonshine", stt_threads: int | None = None,
+    tts_threads: int | None = None,
+) -> VoiceModels:
+    """Load the shipped models: openWakeWord (twice: the microphone's and the playback's
+    detector), Silero VAD, Moonshine (or Whisper with ``stt="whisper"``, none with
+    ``stt="none"``) and Piper, four at a time."""
+    from robovoice.audio.stt import MoonshineTranscriber, WhisperTranscriber
+    from robovoice.audio.tts import PiperSynthesizer
+    from robovoice.audio.vad import SileroVAD
+    from robovoice.audio.wake import OpenWakeWordDetector
+
+    started = time.perf_counter()
+    with ThreadPoolExecutor(max_workers=4, thread_name_prefix="voice-load") as pool:
+        wake = pool.submit(OpenWakeWordDetector, wake_model)
+        playback_wake = pool.submit(OpenWakeWordDetector, wake_model)
+        vad = pool.submit(SileroVAD)
+        tts = pool.submit(PiperSynthesizer, intra_op_threads=tts_threads)
+        transcriber: Future[Transcriber] | None = None
+        if stt == "moonshine":
+            transcriber = pool.submit(lambda: MoonshineTranscriber(threads=stt_threads))
+        elif stt == "whisper":
+            transcriber = pool.submit(lambda: WhisperTranscriber())
+        models = VoiceModels(
+            wake=wake.result(),
+            vad=vad.result(),
+            stt=transcriber.result() if transcriber is not None else None,
+            tts=tts.result(),
+            playback_wake=playback_wake.result(),
+        )
+    log.info("voice models loaded in %.1f s", time.perf_counter() - started)
+    return models

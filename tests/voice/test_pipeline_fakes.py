@@ -1,0 +1,242 @@
+"""The voice pipeline end to end with model fakes (tone = wake word, noise = speech,
+a settable transcript, tone TTS), the sim robot over MCP, and the fake vLLM server."""
+
+from __future__ import annotations
+
+import io
+import wave
+from pathlib import Path
+
+import pytest
+from voice_kit import SettableTranscriber, babble, fake_models, tone, voice_session, wait_until, wake_command
+
+from robovoice.assistant.events import BackendFailed, ToolCalled, ToolReturned
+from robovoice.llm.base import Deadlines
+from robovoice.llm.failover import FALLBACK_MESSAGE
+from robovoice.llm.fake_server import FakeOpenAIServer, Pacing, ScriptedCall, TextReply, ToolCallReply
+from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.voice.config import SpeechConfig, VoiceConfig
+from robovoice.voice.events import (
+    BargedIn,
+    RobotStopped,
+    SentenceSpoken,
+    StopHeard,
+    TranscriptReady,
+    UtteranceIgnored,
+    VoiceTurnFinished,
+    VoiceTurnStarted,
+    WakeWordHeard,
+    WakeWordRejected,
+)
+from robovoice.voice.models import VoiceModels
+
+pytestmark = pytest.mark.timeout(90)
+
+
+async def test_wake_word_then_command_calls_the_tool_and_speaks(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer,
+    backend: OpenAICompatBackend, tmp_path: Path,
+) -> None:
+    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)),
+                TextReply("The projector is on now."))
+    transcriber.text = "Hey Jarvis, turn on the projector."
+    async with voice_session(fakes, backend, speed=2.0, output_dir=tmp_path) as s:
+        await s.say(wake_command())
+        done = await s.log.wait_for(VoiceTurnFinished)
+        await s.settle()
+        assert s.sim.state.projector_on
+    assert [e.text for e in s.log.of(TranscriptReady)] == ["turn on the projector."]
+    assert server.requests[0].last_user_text == "turn on the projector."
+    assert not done.cancelled and done.result is not None
+    assert [c.name for c in done.result.calls] == ["set_projector_power"]
+    spoken = s.log.of(SentenceSpoken)
+    assert [e.text for e in spoken] == ["The projector is on now."]
+    marks = done.latency_ms
+    for stage in ("endpoint", "transcript", "first_token", "tool_call:set_projector_power",
+                  "tool_result:set_projector_power", "first_sentence", "first_audio"):
+        assert stage in marks, stage
+    assert marks["endpoint"] <= marks["transcript"] <= marks["first_token"] <= marks["first_sentence"]
+    assert marks["first_sentence"] <= marks["first_audio"]
+    with wave.open(str(tmp_path / "turn-01.wav")) as wf:
+        assert wf.getnframes() / wf.getframerate() == pytest.approx(spoken[0].duration_s, abs=0.01)
+
+
+async def test_speech_without_wake_word_does_nothing(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    transcriber.text = "turn on the projector"
+    async with voice_session(fakes, backend, speed=2.0) as s:
+        await s.say(babble(1.5))
+        ignored = await s.log.wait_for(UtteranceIgnored)
+        await s.settle()
+    assert ignored.reason == "no_wake_word"
+    assert server.requests == [] and transcriber.calls == 0
+    assert not s.sim.state.projector_on
+
+
+async def test_wake_word_alone_waits_for_the_command(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    server.push(TextReply("It is quarter past ten."))
+    async with voice_session(fakes, backend, speed=2.0) as s:
+        transcriber.text = "Hey Jarvis."
+        await s.say(tone(0.5))
+        ignored = await s.log.wait_for(UtteranceIgnored)
+        assert ignored.reason == "wake_only"
+        transcriber.text = "what time is it?"
+        await s.say(babble(1.0), gap_s=1.0)
+        started = await s.log.wait_for(VoiceTurnStarted)
+        await s.settle()
+    assert started.text == "what time is it?"
+    assert [e.text for e in s.log.of(SentenceSpoken)] == ["It is quarter past ten."]
+
+
+async def test_spoken_stop_stops_a_drive_while_the_model_is_busy(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    # the model takes a minute to answer: the stop must not wait for it
+    server.push(TextReply("Let me think.", pacing=Pacing(first_token_delay_s=60.0)))
+    async with voice_session(fakes, backend, speed=2.0, sim_speed=2.0, setup="driving") as s:
+        assert s.sim.state.moving
+        transcriber.text = "Hey Jarvis, tell me a long story."
+        await s.say(wake_command())
+        await s.log.wait_for(VoiceTurnStarted)
+        await wait_until(lambda: len(server.requests) == 1, s.room)
+        transcriber.text = "Stop!"
+        await s.say(babble(0.5))  # no wake word: the robot is moving
+        stopped = await s.log.wait_for(RobotStopped, timeout=10)
+        assert stopped.ok and not s.sim.state.moving
+        finished = await s.log.wait_for(VoiceTurnFinished, timeout=10)
+        await s.settle()
+    heard = s.log.of(StopHeard)[0]
+    assert heard.cancelled_turn == finished.turn and finished.cancelled
+    assert stopped.latency_ms < 3000  # end of "stop" -> stop tool answered, the model still silent
+    assert [e.text for e in s.log.of(SentenceSpoken) if e.kind == "stop"] == ["Stopped."]
+
+
+async def test_stop_cancels_the_drive_the_voice_started(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    server.push(ToolCallReply((ScriptedCall("navigate_to", {"target": "bedroom"}),)),
+                TextReply("I stopped."))
+    async with voice_session(fakes, backend, speed=2.0, sim_speed=1.0) as s:
+        transcriber.text = "Hey Jarvis, go to the bedroom."
+        await s.say(wake_command())
+        await s.log.wait_for(ToolCalled)
+        await wait_until(lambda: s.sim.state.moving, s.room)
+        transcriber.text = "Stop the robot."
+        await s.say(babble(0.6))
+        stopped = await s.log.wait_for(RobotStopped, timeout=10)
+        await s.settle()
+        assert stopped.ok and not s.sim.state.moving
+    assert s.log.of(VoiceTurnFinished)[0].cancelled
+    progress = [e.text for e in s.log.of(SentenceSpoken) if e.kind == "progress"]
+    assert progress[:1] == ["On my way to the bedroom."]
+
+
+async def test_long_action_gives_throttled_progress_then_the_result(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    server.push(ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
+                TextReply("I am in the kitchen."))
+    config = VoiceConfig(speech=SpeechConfig(progress_interval_s=1.0))
+    async with voice_session(fakes, backend, speed=2.0, sim_speed=4.0, config=config) as s:
+        transcriber.text = "Hey Jarvis, go to the kitchen."
+        await s.say(wake_command())
+        await s.log.wait_for(ToolReturned, timeout=60)
+        await s.settle()
+    assert s.sim.state.nearest_place == "kitchen"
+    spoken = s.log.of(SentenceSpoken)
+    progress = [e.text for e in spoken if e.kind == "progress"]
+    assert progress[0] == "On my way to the kitchen."
+    assert 2 <= len(progress) <= 8 and all(p.startswith("Still on my way") for p in progress[1:])
+    assert spoken[-1].text == "I am in the kitchen." and spoken[-1].kind == "reply"
+
+
+async def test_fallback_is_spoken_when_no_backend_answers(
+    fakes: VoiceModels, transcriber: SettableTranscriber, unused_tcp_port: int
+) -> None:
+    dead = OpenAICompatBackend(f"http://127.0.0.1:{unused_tcp_port}/v1", "nobody",
+                               deadlines=Deadlines(connect_s=1.0, first_token_s=2.0))
+    try:
+        async with voice_session(fakes, dead, speed=2.0) as s:
+            transcriber.text = "Hey Jarvis, turn on the projector."
+            await s.say(wake_command())
+            await s.log.wait_for(VoiceTurnFinished)
+            await s.settle()
+    finally:
+        await dead.aclose()
+    assert len(s.log.of(BackendFailed)) == 1
+    assert [e.text for e in s.log.of(SentenceSpoken)] == [FALLBACK_MESSAGE]
+    assert not s.sim.state.projector_on
+
+
+async def test_audio_capable_backend_gets_the_utterance_as_wav(server: FakeOpenAIServer) -> None:
+    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)), TextReply("Done."))
+    omni = OpenAICompatBackend(server.base_url, server.model, accepts_audio=True)
+    models = fake_models()
+    models = type(models)(wake=models.wake, vad=models.vad, stt=None, tts=models.tts,
+                          playback_wake=models.playback_wake)
+    command = wake_command(1.2)
+    try:
+        async with voice_session(models, omni, speed=2.0) as s:
+            await s.say(command)
+            started = await s.log.wait_for(VoiceTurnStarted)
+            await s.log.wait_for(VoiceTurnFinished)
+            await s.settle()
+    finally:
+        await omni.aclose()
+    assert started.mode == "audio" and started.text == ""
+    assert s.sim.state.projector_on
+    audio = server.requests[0].audio_inputs()
+    assert len(audio) == 1 and audio[0][0] == "wav"
+    with wave.open(io.BytesIO(audio[0][1])) as wf:
+        assert (wf.getnchannels(), wf.getsampwidth(), wf.getframerate()) == (1, 2, 16000)
+        seconds = wf.getnframes() / wf.getframerate()
+    # the utterance: the speech, 0.3 s of pre-roll before it, at most 0.2 s after it
+    assert command.duration_s <= seconds <= command.duration_s + 0.55
+    assert seconds == pytest.approx(started.audio_s, abs=1e-3)
+    assert len(server.requests[1].audio_inputs()) == 1, "the tool round of the same turn still has the audio"
+
+
+async def test_wake_word_while_speaking_barges_in(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    long_reply = " ".join(f"This is sentence number {i} of a rather long answer." for i in range(1, 9))
+    server.push(TextReply(long_reply), TextReply("Sure, the projector is on."))
+    async with voice_session(fakes, backend, speed=2.0) as s:
+        transcriber.text = "Hey Jarvis, tell me something."
+        await s.say(wake_command())
+        await s.log.wait_for(SentenceSpoken)
+        transcriber.text = "Hey Jarvis, never mind."
+        await s.say(wake_command(0.6), gap_s=0.0)
+        barge = await s.log.wait_for(BargedIn)
+        await s.log.wait_for(VoiceTurnStarted, lambda e: e.turn == 2)
+        await s.settle()
+    assert barge.cancelled_turn == 1
+    first = s.log.of(VoiceTurnFinished)[0]
+    assert first.turn == 1 and first.cancelled
+    assert s.room.speaker.stop_count >= 1
+    spoken_first = [e.text for e in s.log.of(SentenceSpoken) if e.turn == 1]
+    assert 1 <= len(spoken_first) < 8, "the long answer was cut short"
+    assert s.log.of(WakeWordHeard)[-1].during_playback
+
+
+async def test_remote_participant_saying_the_wake_word_is_ignored(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    server.push(ToolCallReply((ScriptedCall("end_video_call", {}),)), TextReply("The call has ended."))
+    async with voice_session(fakes, backend, speed=2.0, setup="in_call") as s:
+        transcriber.text = "Hey Jarvis, go to the kitchen."
+        remote = s.room.play_remote(wake_command(1.0))  # through the robot's speaker
+        await remote.finished()
+        await s.room.until(s.room.now + 1.0)
+        assert server.requests == [] and s.log.of(WakeWordRejected)
+        # the person in the room can still end the call, while the remote keeps talking
+        s.room.play_remote(babble(3.0, seed=5))
+        transcriber.text = "Hey Jarvis, end the call."
+        await s.say(wake_command(0.8))
+        await s.log.wait_for(VoiceTurnFinished)
+        await s.settle()
+    assert not s.sim.state.in_call
+    assert [r.last_user_text for r in server.requests][:1] == ["end the call."]

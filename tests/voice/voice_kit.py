@@ -1,0 +1,206 @@
+"""Test kit for the voice pipeline: a session (sim robot over MCP + simulated room + pipeline),
+an event log with bounded waits, model fakes keyed to the test audio, audio builders."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import math
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, TypeVar
+
+import numpy as np
+
+from robovoice.assistant.connect import RobotTarget, open_robot
+from robovoice.assistant.robot_tools import RobotTools
+from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, Samples, as_float32, float32_to_int16
+from robovoice.audio.stt import Transcript
+from robovoice.audio.wav import read_wav
+from robovoice.audio.wake import WAKE_FRAME_SAMPLES
+from robovoice.llm.base import LLMBackend
+from robovoice.sim import SimRobot
+from robovoice.voice.config import VoiceConfig
+from robovoice.voice.events import PipelineEvent
+from robovoice.voice.models import VoiceModels
+from robovoice.voice.pipeline import VoicePipeline
+from robovoice.voice.room import EchoPath, SimulatedRoom
+
+DATA = Path(__file__).resolve().parent.parent / "data"
+EVAL_AUDIO = DATA / "eval" / "audio"
+TEST_AUDIO = DATA / "audio"
+RATE = MODEL_FORMAT.rate
+WAKE_TONE_HZ = 1000.0
+
+E = TypeVar("E")
+
+
+def clip(name: str) -> AudioChunk:
+    """A committed clip: ``eval/<id>`` or ``audio/<id>`` under tests/data."""
+    folder, _, clip_id = name.partition("/")
+    return read_wav((EVAL_AUDIO if folder == "eval" else TEST_AUDIO) / f"{clip_id}.wav")
+
+
+def clip_text(clip_id: str) -> str:
+    specs = json.loads((EVAL_AUDIO / "clips.json").read_text(encoding="utf-8"))
+    return str(next(s["text"] for s in specs if s["id"] == clip_id))
+
+
+# --- model fakes keyed to synthetic audio ------------------------------------------------------
+
+
+class ToneWakeDetector:
+    """A wake word "model" that hears a 1 kHz tone: score 0.99 on frames where the tone
+    carries most of the energy, else 0. Test audio marks the wake phrase with the tone."""
+
+    frame_samples: int = WAKE_FRAME_SAMPLES
+
+    def __init__(self) -> None:
+        t = np.arange(WAKE_FRAME_SAMPLES) / RATE
+        self._c = np.cos(2 * np.pi * WAKE_TONE_HZ * t)
+        self._s = np.sin(2 * np.pi * WAKE_TONE_HZ * t)
+
+    def process(self, frame: Samples) -> float:
+        x = as_float32(frame).astype(np.float64)
+        total = float(np.sum(x * x)) + 1e-12
+        tone = (float(np.dot(x, self._c)) ** 2 + float(np.dot(x, self._s)) ** 2) * 2 / len(x)
+        return 0.99 if total > 1e-4 and tone / total > 0.5 else 0.0
+
+    def reset(self) -> None:
+        return None
+
+
+class SettableTranscriber:
+    """Speech-to-text fake: returns `text` (set by the test before each utterance)."""
+
+    def __init__(self, text: str = "") -> None:
+        self.text = text
+        self.calls = 0
+
+    def transcribe(self, audio: AudioChunk) -> Transcript:
+        self.calls += 1
+        return Transcript(self.text, audio.duration_s)
+
+
+def fake_models(transcriber: SettableTranscriber | None = None) -> VoiceModels:
+    return VoiceModels(wake=ToneWakeDetector(), vad=EnergyVAD(), stt=transcriber or SettableTranscriber(),
+                       tts=ToneSynthesizer(seconds_per_char=0.02), playback_wake=ToneWakeDetector())
+
+
+def tone(seconds: float, hz: float = WAKE_TONE_HZ, level_db: float = -20.0) -> AudioChunk:
+    t = np.arange(round(seconds * RATE)) / RATE
+    x = math.sqrt(2) * 10 ** (level_db / 20) * np.sin(2 * np.pi * hz * t)
+    return AudioChunk(float32_to_int16(x.astype(np.float32)), MODEL_FORMAT)
+
+
+def babble(seconds: float, level_db: float = -20.0, seed: int = 0) -> AudioChunk:
+    """Speech-like noise (band-limited, amplitude-modulated) for the energy VAD."""
+    rng = np.random.default_rng(seed)
+    n = round(seconds * RATE)
+    spec = np.fft.rfft(rng.standard_normal(n))
+    f = np.fft.rfftfreq(n, 1 / RATE)
+    spec[(f < 200) | (f > 3500)] = 0
+    x = np.fft.irfft(spec, n)
+    x *= 0.6 + 0.4 * np.sin(2 * np.pi * 4 * np.arange(n) / RATE)
+    x *= 10 ** (level_db / 20) / (np.sqrt(np.mean(x * x)) + 1e-12)
+    return AudioChunk(float32_to_int16(x.astype(np.float32)), MODEL_FORMAT)
+
+
+def join(*parts: AudioChunk) -> AudioChunk:
+    return AudioChunk(np.concatenate([p.samples for p in parts]), MODEL_FORMAT)
+
+
+def wake_command(seconds: float = 1.0) -> AudioChunk:
+    """'Hey Jarvis' (the tone) followed at once by a command (speech-like noise)."""
+    return join(tone(0.5), babble(seconds))
+
+
+# --- the session ------------------------------------------------------------------------------
+
+
+class EventLog:
+    """Every pipeline event, in order, with bounded waits for the next matching one."""
+
+    def __init__(self) -> None:
+        self.events: list[PipelineEvent] = []
+        self._changed = asyncio.Event()
+
+    def __call__(self, event: PipelineEvent) -> None:
+        self.events.append(event)
+        self._changed.set()
+
+    def of(self, kind: type[E]) -> list[E]:
+        return [e for e in self.events if isinstance(e, kind)]
+
+    async def wait_for(self, kind: type[E], where: Callable[[E], bool] = lambda _: True,
+                       timeout: float = 30.0, after: int = 0) -> E:
+        """The first event of `kind` (from index `after`) for which `where` holds."""
+        async with asyncio.timeout(timeout):
+            while True:
+                for e in self.events[after:]:
+                    if isinstance(e, kind) and where(e):
+                        return e
+                self._changed.clear()
+                await self._changed.wait()
+
+
+@dataclass
+class Session:
+    room: SimulatedRoom
+    pipeline: VoicePipeline
+    sim: SimRobot
+    tools: RobotTools
+    log: EventLog
+
+    async def say(self, audio: AudioChunk, *, gap_s: float = 0.3, timeout: float = 30.0) -> None:
+        """Say `audio` into the room and wait until it has been spoken."""
+        speech = self.room.say(audio, gap_s=gap_s)
+        await speech.finished(timeout)
+
+    async def settle(self, timeout: float = 60.0) -> None:
+        """Wait until the pipeline is idle (everything heard is answered and spoken)."""
+        await self.room.until(self.room.now + 0.7, timeout)  # the end-of-turn silence
+        assert await self.pipeline.wait_idle(timeout), "the pipeline did not become idle"
+
+
+async def wait_until(predicate: Callable[[], bool], room: SimulatedRoom, timeout: float = 30.0) -> None:
+    """Wait (on the room's clock ticks, bounded) until `predicate()` holds."""
+    async with asyncio.timeout(timeout):
+        while not predicate():
+            await room.until(room.now + 0.08, timeout)
+
+
+@asynccontextmanager
+async def voice_session(
+    models: VoiceModels,
+    backend: LLMBackend,
+    *,
+    sim_speed: float = 20.0,
+    speed: float = 1.0,
+    echo: EchoPath | None = EchoPath(),
+    noise: AudioChunk | None = None,
+    config: VoiceConfig | None = None,
+    output_dir: Path | None = None,
+    setup: str = "",
+    **pipeline_options: Any,
+) -> AsyncIterator[Session]:
+    """The embedded sim robot (over a real MCP client), a room and a running pipeline."""
+    async with open_robot(RobotTarget(sim_speed=sim_speed)) as link:
+        sim = link.sim
+        assert sim is not None
+        if setup:
+            await sim.apply_setup(setup)
+        room = SimulatedRoom(speed=speed, echo=echo, noise=noise)
+        log = EventLog()
+        pipeline = VoicePipeline(models, backend, link.tools, source=room.mic, sink=room.speaker,
+                                 reference=room.reference, config=config, observer=log,
+                                 moving=lambda: sim.state.moving, output_dir=output_dir, **pipeline_options)
+        async with asyncio.TaskGroup() as group:
+            group.create_task(pipeline.run(finish_timeout_s=15.0), name="pipeline")
+            try:
+                yield Session(room, pipeline, sim, link.tools, log)
+            finally:
+                room.close()
