@@ -150,6 +150,8 @@ async def _bench_rpc(calls: int) -> tuple[Stats, Stats]:
         raw = await asyncio.to_thread(zenoh.open, config)
         try:
             await _until(lambda: "echo" in client.nodes())
+            # the raw queryable lives on the child's second session: wait until the mesh reaches it
+            await _until(lambda: any(r.ok is not None for r in raw.get(RAW_KEY, payload=b"0", timeout=1)))
             counter = iter(range(10**9))
 
             async def bare() -> float:  # blocking, like the anchor measurement

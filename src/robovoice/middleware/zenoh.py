@@ -132,14 +132,19 @@ class ZenohMiddleware:
             return
         self._bridge = bridge = LoopBridge(asyncio.get_running_loop())
         self._session = session = await self._open()
-        layout = self._layout
-        self._entities.append(session.liveliness().declare_token(layout.client(self._client_id)))
-        self._entities.append(session.declare_subscriber(layout.feedback_all(), bridge.handler(self._on_feedback)))
-        self._presence = Presence(session, layout, bridge, self._on_node_left)
-        self._presence.start()
-        if self._settings.mode == "peer":
-            await _settle(session)
-        await self._presence.sync(PRESENCE_SYNC_S)
+        try:
+            layout = self._layout
+            self._entities.append(session.liveliness().declare_token(layout.client(self._client_id)))
+            self._entities.append(session.declare_subscriber(layout.feedback_all(),
+                                                             bridge.handler(self._on_feedback)))
+            self._presence = Presence(session, layout, bridge, self._on_node_left)
+            self._presence.start()
+            if self._settings.mode == "peer":
+                await _settle(session)
+            await self._presence.sync(PRESENCE_SYNC_S)
+        except BaseException:
+            await self.close()
+            raise
         log.info("zenoh middleware up (%s, robot %r, %d nodes present)", self._settings.describe(),
                  self._settings.robot, len(self._presence.nodes()))
 
@@ -230,12 +235,19 @@ class ZenohMiddleware:
         except ValueError as exc:
             log.warning("dropped bad feedback on %s: %s", sample.key_expr, exc)
 
-    async def call(self, node: str, rpc: str, args: Mapping[str, JSON], *, timeout: float) -> JSON:
+    def _send(self, exchange: Exchange, key: str, args: Mapping[str, JSON], timeout: float,
+              parameters: dict[str, str]) -> None:
         session, bridge = self._open_session()
+        try:
+            send_query(session, bridge, exchange, key, args, timeout=timeout, parameters=parameters)
+        except zenoh.ZError as exc:
+            raise MiddlewareError(f"cannot send {key} on {self.uri}: {_brief(exc)}") from exc
+
+    async def call(self, node: str, rpc: str, args: Mapping[str, JSON], *, timeout: float) -> JSON:
+        self._open_session()
         exchange = self._begin(node)
         try:
-            send_query(session, bridge, exchange, self._layout.rpc(node, rpc), args, timeout=timeout,
-                       parameters={"timeout": f"{timeout:g}"})
+            self._send(exchange, self._layout.rpc(node, rpc), args, timeout, {"timeout": f"{timeout:g}"})
             try:
                 async with asyncio.timeout(timeout):
                     item = await exchange.next()
@@ -247,13 +259,13 @@ class ZenohMiddleware:
 
     async def run_action(self, node: str, action: str, args: Mapping[str, JSON], *,
                          on_feedback: FeedbackSender, timeout: float) -> JSON:
-        session, bridge = self._open_session()
+        self._open_session()
         goal_id = uuid.uuid4().hex
         exchange = self._begin(node, goal_id)
         ended = False
         try:
-            send_query(session, bridge, exchange, self._layout.goal(node, action, goal_id), args,
-                       timeout=timeout, parameters={"timeout": f"{timeout:g}", "client": self._client_id})
+            self._send(exchange, self._layout.goal(node, action, goal_id), args, timeout,
+                       {"timeout": f"{timeout:g}", "client": self._client_id})
             try:
                 async with asyncio.timeout(timeout):
                     item = await self._follow(exchange, on_feedback)
