@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import signal
 import sys
 import time
 from collections.abc import AsyncIterator, Callable
@@ -166,3 +167,16 @@ async def test_external_node_written_with_zenoh_only(spawn: Callable[..., Child]
     assert 20 < temperatures[0].value["celsius"] < 23
     assert node.stop() == 0
     await until(lambda: "lights" not in client.nodes(), what="lights gone")
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+async def test_sim_leaves_cleanly_on_signal(spawn: Callable[..., Child], port: int, client: ZenohMiddleware,
+                                            signum: signal.Signals) -> None:
+    child = sim(spawn, port, "projector")
+    await until(lambda: "projector" in client.nodes(), what="projector present")
+    events: list[PresenceEvent] = []
+    await client.watch(events.append)
+    child.proc.send_signal(signum)
+    assert await asyncio.to_thread(child.proc.wait, 10) == 0, child.output()
+    await until(lambda: NodeLeft("projector") in events, what="NodeLeft(projector)")
+    assert "Traceback" not in child.output()
