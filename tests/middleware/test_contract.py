@@ -152,6 +152,15 @@ async def test_missing_node_and_unknown_rpc(pair: Pair, echo: NodeHost) -> None:
     with pytest.raises(RobotFailure) as failure:
         await pair.client.call("echo", "nope", {}, timeout=2)
     assert failure.value.code == "unknown_rpc"
+    with pytest.raises(RobotFailure) as failure:  # an action is not an RPC
+        await pair.client.call("echo", "count", {"n": 1}, timeout=2)
+    assert failure.value.code == "unknown_rpc"
+
+    async def noop(feedback: Feedback) -> None: ...
+
+    with pytest.raises(RobotFailure) as failure:  # nor the other way round
+        await pair.client.run_action("echo", "echo", {"text": "x"}, on_feedback=noop, timeout=2)
+    assert failure.value.code == "unknown_rpc"
 
 
 async def test_action_feedback_then_result(pair: Pair, echo: NodeHost) -> None:

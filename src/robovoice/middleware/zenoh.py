@@ -42,6 +42,7 @@ from robovoice.middleware.base import (
     NodeInfo,
     PresenceEvent,
     RpcHandler,
+    RpcKind,
 )
 from robovoice.middleware.zenoh_bridge import LoopBridge, close_session, undeclare
 from robovoice.middleware.zenoh_codec import decode, decode_object, failure_from_bytes, feedback_from_bytes
@@ -255,7 +256,7 @@ class ZenohMiddleware:
                 raise self._timed_out(node, rpc, timeout) from None
         finally:
             self._end(exchange)
-        return self._outcome(item, node, rpc)
+        return self._outcome(item, node, rpc, "rpc")
 
     async def run_action(self, node: str, action: str, args: Mapping[str, JSON], *,
                          on_feedback: FeedbackSender, timeout: float) -> JSON:
@@ -276,7 +277,7 @@ class ZenohMiddleware:
             self._end(exchange)
             if not ended:  # timed out, cancelled, or on_feedback failed: stop the goal on the node
                 self._send_cancel(node, action, goal_id)
-        return self._outcome(item, node, action)
+        return self._outcome(item, node, action, "action")
 
     async def _follow(self, exchange: Exchange, on_feedback: FeedbackSender) -> Item:
         """Pass feedback on until the goal ends; then the feedback the node counted, briefly."""
@@ -316,7 +317,7 @@ class ZenohMiddleware:
             details={"node": node, "rpc": rpc, "timeout_s": timeout},
         )
 
-    def _outcome(self, item: Item, node: str, rpc: str) -> JSON:
+    def _outcome(self, item: Item, node: str, rpc: str, kind: RpcKind) -> JSON:
         """The result the query ended with, or the failure it stands for."""
         where = f"{node}.{rpc}"
         if isinstance(item, Answer) and item.ok:
@@ -342,9 +343,10 @@ class ZenohMiddleware:
                 hint="the robot part that offers this is offline; try again later or tell the user",
                 details={"node": node, "present": sorted(present)},
             )
-        if info.rpc(rpc) is None:
-            raise RobotFailure(f"node {node!r} has no RPC {rpc!r}", code="unknown_rpc",
-                               details={"node": node, "rpc": rpc})
+        offered = info.rpc(rpc)
+        if offered is None or offered.kind != kind:
+            raise RobotFailure(f"node {node!r} has no {'action' if kind == 'action' else 'RPC'} {rpc!r}",
+                               code="unknown_rpc", details={"node": node, "rpc": rpc})
         raise NodeUnavailableError(f"node {node!r} did not answer {rpc}",
                                    hint="the robot part may be restarting; try again or tell the user",
                                    details={"node": node, "rpc": rpc})
