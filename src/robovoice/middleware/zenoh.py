@@ -166,6 +166,9 @@ class ZenohMiddleware:
         except TimeoutError:
             opening.add_done_callback(_close_late_session)
             raise MiddlewareError(f"opening the Zenoh session took too long ({settings.describe()})") from None
+        except asyncio.CancelledError:
+            opening.add_done_callback(_close_late_session)
+            raise
 
     async def close(self) -> None:
         session = self._session
@@ -181,6 +184,7 @@ class ZenohMiddleware:
             subscription.close()
         if self._presence is not None:
             await self._presence.close()
+            self._presence = None
         for entity in self._entities:
             undeclare(entity)
         self._entities.clear()
@@ -269,37 +273,43 @@ class ZenohMiddleware:
                        {"timeout": f"{timeout:g}", "client": self._client_id})
             try:
                 async with asyncio.timeout(timeout):
-                    item = await self._follow(exchange, on_feedback)
+                    item, received = await self._follow(exchange, on_feedback)
             except TimeoutError:
                 raise self._timed_out(node, action, timeout) from None
             ended = True
+            await self._drain(exchange, on_feedback, item, received)
         finally:
             self._end(exchange)
             if not ended:  # timed out, cancelled, or on_feedback failed: stop the goal on the node
                 self._send_cancel(node, action, goal_id)
         return self._outcome(item, node, action, "action")
 
-    async def _follow(self, exchange: Exchange, on_feedback: FeedbackSender) -> Item:
-        """Pass feedback on until the goal ends; then the feedback the node counted, briefly."""
+    async def _follow(self, exchange: Exchange, on_feedback: FeedbackSender) -> tuple[Item, int]:
+        """Pass feedback on until the goal ends: the item it ended with, the feedback count."""
         received = 0
         while True:
             item = await exchange.next()
             if not isinstance(item, Feedback):
-                break
+                return item, received
             received += 1
             await on_feedback(item)
-        if isinstance(item, Answer) and item.ok:
-            sent = decode_object(item.attachment).get("feedback")
-            try:
-                async with asyncio.timeout(FEEDBACK_DRAIN_S):
-                    while isinstance(sent, int) and received < sent:
-                        late = await exchange.next()
-                        if isinstance(late, Feedback):
-                            received += 1
-                            await on_feedback(late)
-            except TimeoutError:
-                log.debug("goal %s: %s of %s feedback messages arrived", exchange.goal_id, received, sent)
-        return item
+
+    async def _drain(self, exchange: Exchange, on_feedback: FeedbackSender, item: Item, received: int) -> None:
+        """After a result, pass on the feedback the node says it sent before it (briefly)."""
+        if not (isinstance(item, Answer) and item.ok):
+            return
+        sent = decode_object(item.attachment).get("feedback")
+        if not isinstance(sent, int):
+            return
+        try:
+            async with asyncio.timeout(FEEDBACK_DRAIN_S):
+                while received < sent:
+                    late = await exchange.next()
+                    if isinstance(late, Feedback):
+                        received += 1
+                        await on_feedback(late)
+        except TimeoutError:
+            log.debug("goal %s: %s of %s feedback messages arrived", exchange.goal_id, received, sent)
 
     def _send_cancel(self, node: str, action: str, goal_id: str) -> None:
         session = self._session
