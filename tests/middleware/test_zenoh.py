@@ -237,3 +237,36 @@ async def test_close_fails_calls_still_waiting(nodes: ZenohMiddleware, port: int
     await client.close()
     with pytest.raises(MiddlewareError, match="closed"):
         await asyncio.wait_for(call, BOUND_S)
+
+
+async def test_client_mode_through_a_router(port: int) -> None:
+    """Nodes and clients in client mode reach each other through a router (here a Python
+    session in router mode, standing in for zenohd or rmw_zenoh's router)."""
+    router = ZenohMiddleware.from_uri(f"zenoh://?mode=router&listen=tcp/127.0.0.1:{port}&robot=rt")
+    await router.start()
+    node = ZenohMiddleware.from_uri(f"zenoh://127.0.0.1:{port}?mode=client&robot=rt")
+    client = ZenohMiddleware.from_uri(f"zenoh://127.0.0.1:{port}?mode=client&robot=rt")
+    try:
+        await node.start()
+        await client.start()
+        progress: list[float] = []
+
+        async def count(args: dict[str, JSON], feedback: FeedbackSender) -> JSON:
+            for i in range(3):
+                await feedback(Feedback(i + 1.0, 3.0))
+            return "done"
+
+        host = await node.host(NodeInfo("counter", rpcs=(RpcInfo("count", "action"),)), {}, {"count": count})
+        await until(lambda: "counter" in client.nodes())
+
+        async def on_feedback(feedback: Feedback) -> None:
+            progress.append(feedback.progress)
+
+        assert await client.run_action("counter", "count", {}, on_feedback=on_feedback, timeout=5) == "done"
+        assert progress == [1.0, 2.0, 3.0]
+        await host.leave()
+        await until(lambda: "counter" not in client.nodes())
+    finally:
+        await client.close()
+        await node.close()
+        await router.close()
