@@ -188,12 +188,19 @@ async def http_server(
     non-loopback host without a token, or when the address cannot be bound.
     """
     check_bind(host, token)
+    app = build_http_app(server, host=host, token=token)
+    async with asgi_server(app, host=host, port=port, **uvicorn_options) as endpoint:
+        log.info("MCP over streamable HTTP at %s%s", endpoint.url, " (bearer token required)" if token else "")
+        yield endpoint
+
+
+@asynccontextmanager
+async def asgi_server(app: ASGIApp, *, host: str, port: int, **uvicorn_options: Any) -> AsyncIterator[HttpEndpoint]:
+    """Run `app` under uvicorn on ``host:port`` (0: a free port) until the block ends."""
     sock = _bind(host, port)
     endpoint = HttpEndpoint(host, sock.getsockname()[1])
-    config = uvicorn.Config(
-        build_http_app(server, host=host, token=token), log_config=None, lifespan="on",
-        timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S, **uvicorn_options,
-    )
+    config = uvicorn.Config(app, log_config=None, lifespan="on", timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S,
+                            **uvicorn_options)
     userver = _Uvicorn(config)
     try:
         async with owned_tasks() as group:
@@ -203,7 +210,6 @@ async def http_server(
             ready.cancel()
             if serving.done():
                 raise ConfigError(f"the HTTP server for {endpoint.url} stopped during start-up")
-            log.info("MCP over streamable HTTP at %s%s", endpoint.url, " (bearer token required)" if token else "")
             try:
                 yield endpoint
             finally:
