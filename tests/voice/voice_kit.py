@@ -204,3 +204,31 @@ async def voice_session(
                 yield Session(room, pipeline, sim, link.tools, log)
             finally:
                 room.close()
+
+
+# --- a fake LLM that routes by keywords (the test then needs the transcript to be right) ----------
+
+_ROUTES: list[tuple[tuple[str, ...], str, dict[str, Any]]] = [
+    (("projector", "off"), "set_projector_power", {"on": False}),
+    (("projector",), "set_projector_power", {"on": True}),
+    (("end", "call"), "end_video_call", {}),
+    (("kitchen",), "navigate_to", {"target": "kitchen"}),
+    (("bedroom",), "navigate_to", {"target": "bedroom"}),
+    (("anna",), "start_video_call", {"contact": "Anna"}),
+    (("battery",), "get_battery_state", {}),
+]
+
+
+def keyword_router(request: Any) -> Any:
+    """A `CallbackReply` function: a tool call chosen by keywords of the user's words, then a
+    short sentence once the tool has answered."""
+    from robovoice.llm.fake_server import ScriptedCall, TextReply, ToolCallReply
+
+    messages = request.messages
+    if messages and messages[-1].get("role") == "tool":
+        return TextReply(f"Done: {messages[-2]['tool_calls'][0]['function']['name'].replace('_', ' ')}.")
+    words = request.last_user_text.lower().replace(",", " ").replace(".", " ").split()
+    for keys, tool, args in _ROUTES:
+        if all(k in words for k in keys):
+            return ToolCallReply((ScriptedCall(tool, args),))
+    return TextReply("Sorry, I did not catch that.")

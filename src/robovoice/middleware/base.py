@@ -158,7 +158,11 @@ class Middleware(Protocol):
         ...
 
     async def subscribe(self, topic: str, callback: Callable[[Message], None]) -> Subscription:
-        """Receive every message published on `topic` (exact name) on the event loop."""
+        """Receive the messages published on `topic` (exact name) on the event loop.
+
+        A networked adapter may drop the oldest queued messages (and log it) when the event
+        loop falls far behind a fast topic, so memory stays bounded; subscribers that keep
+        only the latest value (snapshots) are unaffected."""
         ...
 
     def nodes(self) -> Mapping[str, NodeInfo]:

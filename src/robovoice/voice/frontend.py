@@ -97,11 +97,13 @@ class FrontEndResult:
 class EchoMeter:
     """Remembers the echo canceller's block levels for the last seconds and judges windows.
 
-    The *leak* is how much of the echo the canceller leaves, as residual/mic power, taken
-    as the 10th percentile over recent blocks with playback (far-end-only blocks dominate
-    the low end). Before enough blocks were seen the leak is taken as 1 (no cancellation
-    assumed), so nothing heard during the first playback counts as the person unless the
-    echo canceller has proved itself.
+    The *leak* is how much of the echo the canceller leaves: residual over microphone
+    power, summed over the last `leak_window_s` seconds of blocks with playback (while the
+    canceller converges this is high, once converged low). A window heard during playback
+    is the person's when its own residual/microphone ratio exceeds the leak by
+    `margin_db`: talk over the robot raises the residual far above the leak; the robot's
+    own voice leaves it at the leak. Before enough blocks were seen the leak is taken as 1
+    (no cancellation assumed): nothing then counts as the person.
     """
 
     def __init__(self, *, margin_db: float = 6.0, history_s: float = 12.0, leak_window_s: float = 8.0) -> None:
@@ -120,12 +122,13 @@ class EchoMeter:
     def leak(self, now: float) -> float:
         if now - self._leak_at < 0.25:
             return self._leak
-        ratios = [
-            s.residual / s.mic
-            for t, s in self._blocks
-            if now - t <= self._leak_window_s and s.reference > _REF_ACTIVE and s.mic > 1e-7
+        playing = [
+            s for t, s in self._blocks if now - t <= self._leak_window_s and s.reference > _REF_ACTIVE and s.mic > 1e-7
         ]
-        self._leak = float(np.percentile(ratios, 10)) if len(ratios) >= 25 else 1.0
+        if len(playing) >= 25:
+            self._leak = sum(s.residual for s in playing) / sum(s.mic for s in playing)
+        else:
+            self._leak = 1.0
         self._leak_at = now
         return self._leak
 
