@@ -89,6 +89,13 @@ def test_audit_log_appends_one_json_line_per_call(tmp_path: Path) -> None:
     assert os.stat(path).st_mode & 0o077 == 0  # private to the user
 
 
+def test_an_unwritable_audit_log_is_a_config_error(tmp_path: Path) -> None:
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    with pytest.raises(ConfigError, match="cannot open the audit log"):
+        AuditLog(blocker / "audit.jsonl")
+
+
 def test_disabled_audit_log_writes_nothing(tmp_path: Path) -> None:
     log = AuditLog(None)
     assert not log.enabled
@@ -96,12 +103,12 @@ def test_disabled_audit_log_writes_nothing(tmp_path: Path) -> None:
     assert list(tmp_path.iterdir()) == []
 
 
-def _guarded(token: str | None = None, host: str = "127.0.0.1") -> TestClient:
+def _guarded(token: str | None = None, host: str = "127.0.0.1", any_host: bool = False) -> TestClient:
     async def ok(request: object) -> PlainTextResponse:
         return PlainTextResponse("ok")
 
     app = HttpGuard(Starlette(routes=[Route("/mcp", ok, methods=["GET", "POST"])]),
-                    allowed_hosts={"localhost", "127.0.0.1", "::1", host}, token=token)
+                    allowed_hosts={"localhost", "127.0.0.1", "::1", host}, token=token, any_host=any_host)
     return TestClient(app, base_url="http://127.0.0.1:8765")
 
 
@@ -122,6 +129,16 @@ def test_guard_allows_the_configured_host() -> None:
     assert client.get("/mcp", headers={"Host": "robot.local:8765", "Origin": "http://robot.local:8765"}).status_code \
         == 200
     assert client.get("/mcp", headers={"Host": "[::1]:8765", "Origin": "http://[::1]:8765"}).status_code == 200
+
+
+def test_guard_for_a_wildcard_bind_accepts_any_host_but_needs_the_token() -> None:
+    client = _guarded(token="t" * 20, host="0.0.0.0", any_host=True)
+    auth = {"Authorization": "Bearer " + "t" * 20}
+    assert client.get("/mcp", headers={**auth, "Host": "192.168.1.20:8765"}).status_code == 200
+    assert client.get("/mcp", headers={"Host": "192.168.1.20:8765"}).status_code == 401
+    assert client.get("/mcp", headers={**auth, "Origin": "http://evil.example"}).status_code == 403
+    with pytest.raises(ConfigError, match="token"):
+        HttpGuard(Starlette(), allowed_hosts=(), token=None, any_host=True)
 
 
 def test_loopback_detection() -> None:

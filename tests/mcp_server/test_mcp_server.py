@@ -114,7 +114,7 @@ async def test_a_manifest_change_is_announced(tmp_path: Path) -> None:
         await host_lamp(bench.middleware, Lamp())
         await bench.notes.wait_count(types.ToolListChangedNotification, 1)
         renamed = lamp_manifest()
-        renamed["tools"][0]["name"] = "switch_lamp"  # type: ignore[index]
+        renamed["tools"][0]["name"] = "switch_lamp"
         await host_lamp(bench.middleware, Lamp(), renamed)  # the node re-announces itself
         await bench.notes.wait_count(types.ToolListChangedNotification, 2)
         names = {t.name for t in (await bench.client.list_tools()).tools}

@@ -88,6 +88,9 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
     serve.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"HTTP port (default {DEFAULT_PORT}; 0: any)")
     serve.add_argument("--token-file", type=Path, metavar="F",
                        help="HTTP: require 'Authorization: Bearer <the token in F>'")
+    serve.add_argument("--allow-host", action="append", default=[], metavar="NAME",
+                       help="HTTP: also accept this Host/Origin name, e.g. robot.local (repeatable; loopback "
+                            "names and --host always are; a 0.0.0.0 bind with a token accepts any Host)")
     _add_audit_args(serve)
     serve.set_defaults(run=run_serve)
 
@@ -237,7 +240,8 @@ async def _serve(args: argparse.Namespace, token: str | None, stop: asyncio.Even
                 serving.cancel()
                 stopping.cancel()
             return 0
-        async with http_server(robot.server, host=args.host, port=args.port, token=token) as endpoint:
+        async with http_server(robot.server, host=args.host, port=args.port, token=token,
+                               allowed_hosts=args.allow_host) as endpoint:
             print(f"robovoice serve: ready: {endpoint.url} ({len(robot.server.tools())} tools)", flush=True)
             await stop.wait()
     return 0

@@ -29,6 +29,8 @@ from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any, Literal
 
+from robovoice.errors import ConfigError
+
 log = logging.getLogger(__name__)
 
 _MAX_INLINE_DATA = 256
@@ -99,9 +101,13 @@ class AuditLog:
         self._lock = threading.Lock()
         self._fd: int | None = None
         if path is not None:
-            path.parent.mkdir(parents=True, exist_ok=True)
-            # O_APPEND: every write lands at the end, whatever other writers do.
-            self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+            try:
+                path.parent.mkdir(parents=True, exist_ok=True)
+                # O_APPEND: every write lands at the end, whatever other writers do.
+                self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+            except OSError as exc:
+                raise ConfigError(f"cannot open the audit log {path}: {exc.strerror or exc} "
+                                  "(choose another with --audit-log F)") from None
 
     @property
     def enabled(self) -> bool:

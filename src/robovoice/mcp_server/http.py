@@ -86,11 +86,20 @@ def _hostname(authority: str) -> str:
 
 
 class HttpGuard:
-    """ASGI middleware: Host / Origin allow-list, then the bearer token (see module docstring)."""
+    """ASGI middleware: Host / Origin allow-list, then the bearer token (see module docstring).
 
-    def __init__(self, app: ASGIApp, *, allowed_hosts: Iterable[str], token: str | None) -> None:
+    `any_host`: accept any ``Host`` (for a wildcard bind such as 0.0.0.0, where clients use
+    whatever address reaches the machine; only allowed with a token, which a DNS-rebinding
+    page cannot send). ``Origin`` is checked against `allowed_hosts` either way.
+    """
+
+    def __init__(self, app: ASGIApp, *, allowed_hosts: Iterable[str], token: str | None,
+                 any_host: bool = False) -> None:
+        if any_host and token is None:
+            raise ConfigError("accepting any Host header needs a bearer token")
         self.app = app
         self.allowed_hosts = frozenset(h.strip("[]").lower() for h in allowed_hosts)
+        self.any_host = any_host
         self._token = token.encode("utf-8") if token is not None else None
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
@@ -106,7 +115,7 @@ class HttpGuard:
 
     def _refusal(self, headers: Headers) -> PlainTextResponse | None:
         host = headers.get("host", "")
-        if _hostname(host) not in self.allowed_hosts:
+        if not self.any_host and _hostname(host) not in self.allowed_hosts:
             log.warning("refused a request for Host %r (DNS rebinding protection)", host[:100])
             return PlainTextResponse("Invalid Host header", status_code=421)
         origin = headers.get("origin")
@@ -124,9 +133,17 @@ class HttpGuard:
         return None
 
 
+def is_wildcard(host: str) -> bool:
+    return host.strip("[]") in ("0.0.0.0", "::", "")
+
+
 def build_http_app(server: RobotToolServer, *, host: str = "127.0.0.1", token: str | None = None,
-                   path: str = MCP_PATH) -> ASGIApp:
-    """The ASGI app: the SDK's streamable-HTTP session manager at `path`, behind `HttpGuard`."""
+                   path: str = MCP_PATH, allowed_hosts: Iterable[str] = ()) -> ASGIApp:
+    """The ASGI app: the SDK's streamable-HTTP session manager at `path`, behind `HttpGuard`.
+
+    Allowed ``Host``/``Origin`` names: the loopback names, `host`, and `allowed_hosts`. A
+    wildcard bind (0.0.0.0, ::) with a token and no `allowed_hosts` accepts any ``Host``.
+    """
     manager = StreamableHTTPSessionManager(
         app=server.server,
         # The Host/Origin checks are HttpGuard's, on every path; the SDK's would duplicate them.
@@ -139,7 +156,9 @@ def build_http_app(server: RobotToolServer, *, host: str = "127.0.0.1", token: s
             yield
 
     app = Starlette(routes=[Route(path, endpoint=StreamableHTTPASGIApp(manager))], lifespan=lifespan)
-    return HttpGuard(app, allowed_hosts=LOOPBACK_NAMES | {host}, token=token)
+    extra = frozenset(allowed_hosts)
+    any_host = is_wildcard(host) and token is not None and not extra
+    return HttpGuard(app, allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token, any_host=any_host)
 
 
 @dataclass(frozen=True, slots=True)
@@ -180,7 +199,7 @@ def _bind(host: str, port: int) -> socket.socket:
 @asynccontextmanager
 async def http_server(
     server: RobotToolServer, *, host: str = "127.0.0.1", port: int = 0, token: str | None = None,
-    **uvicorn_options: Any,
+    allowed_hosts: Iterable[str] = (), **uvicorn_options: Any,
 ) -> AsyncIterator[HttpEndpoint]:
     """Serve `server` (already `running()`) over streamable HTTP until the block ends.
 
@@ -188,7 +207,7 @@ async def http_server(
     non-loopback host without a token, or when the address cannot be bound.
     """
     check_bind(host, token)
-    app = build_http_app(server, host=host, token=token)
+    app = build_http_app(server, host=host, token=token, allowed_hosts=allowed_hosts)
     async with asgi_server(app, host=host, port=port, **uvicorn_options) as endpoint:
         log.info("MCP over streamable HTTP at %s%s", endpoint.url, " (bearer token required)" if token else "")
         yield endpoint
