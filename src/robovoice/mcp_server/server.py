@@ -245,18 +245,20 @@ class RobotToolServer:
     async def running(self) -> AsyncIterator[RobotToolServer]:
         """Follow the middleware's presence while serving. Nodes already present are in the
         catalog (and their snapshot topics tracked) when this yields."""
-        async with owned_tasks() as group:
-            follower = group.create_task(self._follow_presence(), name="mcp-presence")
-            watch = await self.middleware.watch(self._on_presence)
-            try:
-                await self.settled()
-                log.info("serving %d tools from nodes %s", len(self._tools), ", ".join(self.catalog.nodes()))
-                yield self
-            finally:
-                watch.close()
-                self.notifier.close()
-                follower.cancel()
-        self.snapshots.close()
+        try:
+            async with owned_tasks() as group:
+                follower = group.create_task(self._follow_presence(), name="mcp-presence")
+                watch = await self.middleware.watch(self._on_presence)
+                try:
+                    await self.settled()
+                    log.info("serving %d tools from nodes %s", len(self._tools), ", ".join(self.catalog.nodes()))
+                    yield self
+                finally:
+                    watch.close()
+                    self.notifier.close()
+                    follower.cancel()
+        finally:
+            self.snapshots.close()
 
 
 def _topics(surface: NodeSurface | None) -> list[str]:
