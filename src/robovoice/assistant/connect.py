@@ -115,7 +115,7 @@ async def _remote_client(target: RobotTarget, tools: RobotTools) -> AsyncIterato
         if not argv:
             raise ConfigError("--server stdio: needs a command, e.g. 'stdio:robovoice serve --robot sim'")
         params = StdioServerParameters(command=argv[0], args=argv[1:])
-        async with Client(params, message_handler=tools.handle_message, cache=None) as client:
+        async with Client(params, message_handler=tools.handle_message, cache=None, mode="legacy") as client:
             yield client
         return
     if not target.server.startswith(("http://", "https://")):
@@ -123,5 +123,5 @@ async def _remote_client(target: RobotTarget, tools: RobotTools) -> AsyncIterato
     headers = {"Authorization": f"Bearer {_read_token(target.token_file)}"} if target.token_file else {}
     http = httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(10.0, read=330.0))
     async with http, Client(streamable_http_client(target.server, http_client=http),
-                            message_handler=tools.handle_message, cache=None) as client:
+                            message_handler=tools.handle_message, cache=None, mode="legacy") as client:
         yield client

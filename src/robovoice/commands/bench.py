@@ -1,0 +1,100 @@
+"""`robovoice bench …`: the benchmarks whose figures go into docs/performance.md.
+
+Each prints JSON (machine-readable, pasted into the docs) — or a table where the benchmark
+has one — and exits 0. Benchmarks are measurements, not tests: nothing here asserts a goal.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import json
+import os
+import platform
+from dataclasses import asdict, is_dataclass
+from pathlib import Path
+from typing import Any
+
+
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
+    bench = subparsers.add_parser("bench", help="run a benchmark (figures for docs/performance.md)")
+    sub = bench.add_subparsers(dest="bench_command", metavar="BENCH", required=True)
+
+    mcp = sub.add_parser("mcp", help="MCP tool-call latency in-process / stdio / HTTP vs a plain SDK server; "
+                                     "snapshot reads; snapshot ingest at 1 and 10 kHz")
+    mcp.add_argument("-n", type=int, default=300, help="calls per transport (default 300)")
+    mcp.set_defaults(run=_mcp)
+
+    zenoh = sub.add_parser("zenoh", help="RPC round trip over Zenoh vs a bare get(); MCP over Zenoh vs memory; "
+                                         "snapshot ingest from another process")
+    zenoh.add_argument("-n", type=int, default=1000, help="RPC calls (default 1000)")
+    zenoh.set_defaults(run=_zenoh)
+
+    llm = sub.add_parser("llm", help="the embedded model: load, warm-up, prefix reuse, first-event latency")
+    llm.add_argument("--repeats", type=int, default=1)
+    llm.add_argument("--threads", type=int, default=2)
+    llm.set_defaults(run=_llm)
+
+    audio = sub.add_parser("audio", help="wake word + VAD CPU, STT latency and accuracy, TTS first audio, "
+                                         "wake-word false accepts")
+    audio.add_argument("--fixtures", type=Path, default=Path("tests/data/audio"))
+    audio.add_argument("--negative-wav", type=Path,
+                       help="long audio without the wake phrase (≥ 10 min advised); make it with "
+                            "scripts/make_audio_fixtures.py --negative-minutes")
+    audio.add_argument("--repeats", type=int, default=3)
+    audio.set_defaults(run=_audio)
+
+
+def _machine() -> dict[str, Any]:
+    model = ""
+    with contextlib.suppress(OSError, StopIteration):
+        model = next(line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+                     if line.startswith("model name"))
+    return {"cpu": model, "cores": os.cpu_count(), "python": platform.python_version(),
+            "load_avg_1m": round(os.getloadavg()[0], 2)}
+
+
+def _print(result: Any) -> int:
+    if is_dataclass(result) and not isinstance(result, type):
+        result = asdict(result)
+    elif hasattr(result, "to_dict"):
+        result = result.to_dict()
+    print(json.dumps({"machine": _machine(), "result": result}, indent=1, default=str))
+    return 0
+
+
+def _mcp(args: argparse.Namespace) -> int:
+    from robovoice.mcp_server.bench import bench_mcp, format_report
+
+    report = asyncio.run(bench_mcp(args.n))
+    print(format_report(report))
+    print(f"machine: {_machine()}")
+    return 0
+
+
+def _zenoh(args: argparse.Namespace) -> int:
+    from robovoice.middleware.bench_zenoh import run_zenoh_bench
+
+    return _print(asyncio.run(run_zenoh_bench(calls=args.n)))
+
+
+def _llm(args: argparse.Namespace) -> int:
+    from robovoice.llm.bench import bench_local
+
+    async def run() -> Any:
+        from robovoice.llm.local import LocalLlamaBackend
+
+        backend = LocalLlamaBackend(n_threads=args.threads)
+        try:
+            return await bench_local(backend, repeats=args.repeats)
+        finally:
+            await backend.aclose()
+
+    return _print(asyncio.run(run()))
+
+
+def _audio(args: argparse.Namespace) -> int:
+    from robovoice.audio.bench import run_all
+
+    return _print(run_all(args.fixtures, negative_wav=args.negative_wav, whisper=True, repeats=args.repeats))
