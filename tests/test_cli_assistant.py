@@ -1,0 +1,105 @@
+"""`robovoice chat` and `robovoice eval` as a user runs them (real processes)."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import socket
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from robovoice.llm.fake_server import (
+    CallbackReply,
+    FakeOpenAIServer,
+    RecordedRequest,
+    ScriptedCall,
+    TextReply,
+    ToolCallReply,
+)
+from robovoice.llm.local import llama_cpp_available
+from robovoice.llm.model_store import default_model_ready
+
+ROBOVOICE = [sys.executable, "-m", "robovoice.cli"]
+DATA = Path(__file__).parent / "data" / "eval"
+needs_model = pytest.mark.skipif(not (llama_cpp_available() and default_model_ready()),
+                                 reason="needs llama-cpp-python and the model parts (scripts/setup.sh)")
+
+
+def _dead_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+async def _run(*args: str, stdin: str = "", timeout: float = 240) -> tuple[int, str, str]:
+    proc = await asyncio.create_subprocess_exec(
+        *ROBOVOICE, *args, stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE,
+        stderr=asyncio.subprocess.PIPE, env={**os.environ, "PYTHONUNBUFFERED": "1"})
+    out, err = await asyncio.wait_for(proc.communicate(stdin.encode()), timeout)
+    return proc.returncode or 0, out.decode(), err.decode()
+
+
+async def test_chat_through_a_server_shows_calls_and_answers() -> None:
+    script = [ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
+              TextReply("I'm in the kitchen now.")]
+    async with FakeOpenAIServer(script) as server:
+        code, out, err = await _run("chat", "--robot", "sim", "--sim-speed", "50",
+                                    "--llm", server.base_url, "--model", server.model,
+                                    stdin="please drive to the kitchen\n")
+    assert code == 0, err
+    assert "→ navigate_to(target='kitchen')" in out
+    assert "← navigate_to ok" in out and '"arrived": "kitchen"' in out
+    assert "robot> I'm in the kitchen now." in out
+
+
+async def test_chat_with_nothing_reachable_says_the_fallback_within_the_deadline() -> None:
+    start = time.monotonic()
+    code, out, err = await _run("chat", "--robot", "sim", "--llm", f"http://127.0.0.1:{_dead_port()}/v1#m",
+                                stdin="hello\n")
+    assert code == 0, err
+    assert "robot> I can't reach my language model right now." in out
+    assert "! no language model answered" in out and "Traceback" not in err
+    assert time.monotonic() - start < 30
+
+
+async def test_eval_json_summary_with_a_scripted_model() -> None:
+    def reply(request: RecordedRequest) -> ToolCallReply | TextReply:
+        if request.messages[-1]["role"] == "tool":
+            return TextReply("Done.")
+        text = request.last_user_text.lower()
+        if "kitchen" in text:
+            return ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),))
+        return TextReply("Hello!")
+
+    async with FakeOpenAIServer([], default=CallbackReply(reply)) as server:
+        code, out, err = await _run("eval", str(DATA / "text.jsonl"), "--robot", "sim", "--sim-speed", "50",
+                                    "--only", "nav-kitchen-1", "--only", "chat-1", "--only", "proj-on-1",
+                                    "--llm", server.base_url, "--model", server.model, "--json")
+    assert code == 0, err
+    summary = json.loads(out)
+    assert summary["cases"] == 3 and summary["passed"] == 2 and summary["accuracy"] == pytest.approx(2 / 3, 0.01)
+    by_id = {r["id"]: r for r in summary["results"]}
+    assert by_id["nav-kitchen-1"]["passed"] and by_id["nav-kitchen-1"]["calls"] == [
+        {"tool": "navigate_to", "args": {"target": "kitchen"}}]
+    assert not by_id["proj-on-1"]["passed"] and by_id["proj-on-1"]["reply"] == "Hello!"
+    assert summary["p50"] is not None and "first_token" in summary["stages"]
+
+
+async def test_eval_of_a_missing_file_fails_cleanly() -> None:
+    code, _, err = await _run("eval", "no/such/cases.jsonl")
+    assert code == 1 and "cannot read case file" in err and "Traceback" not in err
+
+
+@pytest.mark.integration
+@needs_model
+async def test_chat_with_the_embedded_model_drives_to_the_kitchen_even_behind_a_dead_server() -> None:
+    code, out, err = await _run("chat", "--robot", "sim", "--sim-speed", "20",
+                                "--llm", f"http://127.0.0.1:{_dead_port()}/v1#edge-model", "--llm", "local",
+                                stdin="please drive to the kitchen\n", timeout=600)
+    assert code == 0, err
+    assert "→ navigate_to(target='kitchen')" in out
+    assert "robot> " in out.split("← navigate_to ok", 1)[1]  # it answered in words after the drive
