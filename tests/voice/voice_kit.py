@@ -6,6 +6,7 @@ from __future__ import annotations
 import asyncio
 import json
 import math
+import re
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
@@ -211,10 +212,10 @@ async def voice_session(
 _ROUTES: list[tuple[tuple[str, ...], str, dict[str, Any]]] = [
     (("projector", "off"), "set_projector_power", {"on": False}),
     (("projector",), "set_projector_power", {"on": True}),
-    (("end", "call"), "end_video_call", {}),
+    (("anna",), "start_video_call", {"contact": "Anna"}),
+    (("call",), "end_video_call", {}),  # "end the call" (speech-to-text also hears "and the call")
     (("kitchen",), "navigate_to", {"target": "kitchen"}),
     (("bedroom",), "navigate_to", {"target": "bedroom"}),
-    (("anna",), "start_video_call", {"contact": "Anna"}),
     (("battery",), "get_battery_state", {}),
 ]
 
@@ -227,7 +228,7 @@ def keyword_router(request: Any) -> Any:
     messages = request.messages
     if messages and messages[-1].get("role") == "tool":
         return TextReply(f"Done: {messages[-2]['tool_calls'][0]['function']['name'].replace('_', ' ')}.")
-    words = request.last_user_text.lower().replace(",", " ").replace(".", " ").split()
+    words = re.findall(r"[a-z]+", request.last_user_text.lower())
     for keys, tool, args in _ROUTES:
         if all(k in words for k in keys):
             return ToolCallReply((ScriptedCall(tool, args),))
