@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from robovoice.audio.vad import EndpointerConfig
 from robovoice.audio.wake import WakeDeciderConfig
+from robovoice.config import VoiceConfig as VoiceSettings
 from robovoice.errors import ConfigError
 
 
@@ -80,3 +81,14 @@ class VoiceConfig:
     stop_tool: str = "stop_robot"
     motion_tools: tuple[str, ...] = ("navigate_to", "return_to_dock")
     stop_timeout_s: float = 5.0
+
+
+def from_settings(settings: VoiceSettings) -> VoiceConfig:
+    """The pipeline's config from the ``[voice]`` section of robovoice.toml."""
+    return VoiceConfig(
+        wake_model=settings.wake_model,
+        wake=WakeDeciderConfig(threshold=settings.wake_threshold),
+        endpointer=EndpointerConfig(end_silence_s=settings.end_of_turn_silence_ms / 1000.0,
+                                    max_utterance_s=settings.max_utterance_s),
+        turns=TurnTakingConfig(follow_up_s=settings.follow_up_s),
+    )

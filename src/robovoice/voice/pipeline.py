@@ -24,13 +24,10 @@ from __future__ import annotations
 
 import asyncio
 import contextvars
-import difflib
 import inspect
-import io
 import logging
 import re
 import time
-import wave
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -70,10 +67,10 @@ from robovoice.voice.progress import ProgressNarrator
 from robovoice.voice.speech import SpeechOutput
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.turns import Action, TurnTaking, Verdict
+from robovoice.voice.utterance import OwnWords, Transcribing, Transcription, strip_wake_words, trim_to_wake, wav_bytes
 
 log = logging.getLogger(__name__)
 
-_WAKE_LOOKBACK_S = 1.6  # a command's audio starts at most this long before its wake word
 _WAKE_ONLY_S = 0.2  # without STT: less speech than this after the wake word = wake word alone
 
 
@@ -82,15 +79,6 @@ class _Turn:
     id: int
     metrics: TurnMetrics
     motion_calls: set[str] = field(default_factory=set)
-
-
-@dataclass(frozen=True, slots=True)
-class _Speculation:
-    """Speech-to-text started at a pause, before the end of turn was confirmed."""
-
-    onset: float
-    at: float
-    task: asyncio.Task[tuple[str, float]]
 
 
 _current_turn: contextvars.ContextVar[_Turn | None] = contextvars.ContextVar("robovoice_voice_turn", default=None)
@@ -105,31 +93,6 @@ class PipelineStats:
     rejected_wakes: int = 0
     frontend_s: float = 0.0
     audio_s: float = 0.0
-
-
-def wav_bytes(audio: AudioChunk) -> bytes:
-    """A chunk as a complete 16-bit PCM WAV file (what `AudioPart` sends)."""
-    buf = io.BytesIO()
-    with wave.open(buf, "wb") as wf:
-        wf.setnchannels(audio.format.channels)
-        wf.setsampwidth(2)
-        wf.setframerate(audio.format.rate)
-        wf.writeframes(audio.bytes)
-    return buf.getvalue()
-
-
-def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
-    """Remove the wake phrase from the start of a transcript, tolerating how speech-to-text
-    spells it ("Hey, Jarvis,", "Hey Jervis", "Jarvis,"); text after it is kept as said."""
-    words = list(re.finditer(r"[A-Za-z']+", text))
-    target = phrase.lower().split()
-    for k in range(len(target), 0, -1):
-        if len(words) < k:
-            continue
-        heard = " ".join(w.group(0).lower() for w in words[:k])
-        if difflib.SequenceMatcher(None, heard, " ".join(target[-k:])).ratio() >= 0.75:
-            return text[words[k - 1].end() :].lstrip(" ,.!?;:-").strip()
-    return text.strip()
 
 
 class VoicePipeline:
@@ -195,7 +158,8 @@ class VoicePipeline:
         self._next_id = 0
         self._now = 0.0
         self._changed = asyncio.Event()
-        self._speculation: _Speculation | None = None
+        self._own_words = OwnWords()
+        self.stt = Transcribing(models.stt, self._stt_exec) if models.stt is not None else None
         if self.audio_native is False and models.stt is None:
             raise ValueError("a text-only backend needs a speech-to-text model")
 
@@ -313,47 +277,24 @@ class VoicePipeline:
     def _on_pause(self, pause: HeardPause) -> None:
         """Start transcribing at the first pause of an utterance that will need it, so the
         transcript is (nearly) ready when the end-of-turn silence confirms the end."""
-        if self.models.stt is None or self._group is None:
+        if self.stt is None or self._group is None:
             return
+        short = pause.at - pause.onset <= self.config.turns.stop_max_s
         addressed = self.turns.addressed(pause.onset, pause.at)
-        if self.audio_native and not (addressed and pause.at - pause.onset <= self.config.turns.stop_max_s):
+        if self.audio_native and not (addressed and short):
+            return  # audio goes to the model as it is; only short commands are checked for a stop
+        if not addressed and not (self._moving_hint() and short):
             return
-        if not addressed and not (self._moving_hint() and pause.at - pause.onset <= self.config.turns.stop_max_s):
-            return
-        self._drop_speculation()
-        wake_at = self.turns.pending_wake
-        audio = self._trim_to_wake(pause.audio, wake_at)
-        task = self._group.create_task(self._transcribe_timed(audio), name="voice-stt-speculative")
-        self._speculation = _Speculation(pause.onset, pause.at, task)
-
-    def _drop_speculation(self) -> None:
-        if self._speculation is not None:
-            self._speculation.task.cancel()
-            self._speculation = None
-
-    async def _transcribe_timed(self, audio: AudioChunk) -> tuple[str, float]:
-        stt = self.models.stt
-        assert stt is not None
-        started = time.perf_counter()
-        transcript = await self._stt_exec.run(stt.transcribe, audio)
-        return transcript.text, (time.perf_counter() - started) * 1000.0
-
-    def _take_speculation(self, utt: HeardUtterance) -> asyncio.Task[tuple[str, float]] | None:
-        """The speculative transcription that covers all of `utt`, if any."""
-        spec, self._speculation = self._speculation, None
-        if spec is None:
-            return None
-        if abs(spec.onset - utt.start) < 1e-6 and spec.at >= utt.end - 1e-6:
-            return spec.task
-        spec.task.cancel()
-        return None
+        group = self._group
+        self.stt.speculate(pause.onset, pause.at, trim_to_wake(pause.audio, self.turns.pending_wake),
+                           lambda coro: group.create_task(coro, name="voice-stt-speculative"))
 
     async def _on_utterance(self, utt: HeardUtterance, received: float, compute_s: float) -> None:
         short = utt.duration_s <= self.config.turns.stop_max_s
         moving = short and not self.turns.addressed(utt.start, utt.end) and await self._moving()
         verdict = self.turns.classify(utt.start, utt.end, moving=moving)
         own_voice = utt.playback_share > 0.5 and not utt.near_end
-        speculation = self._take_speculation(utt)
+        speculation = self.stt.take(utt.start, utt.end) if self.stt is not None else None
         if verdict.action is Action.COMMAND and (verdict.wake_at is not None or not own_voice):
             self._start_command(utt, verdict, received, compute_s, speculation)
             return
@@ -399,7 +340,7 @@ class VoicePipeline:
         verdict: Verdict,
         received: float,
         compute_s: float,
-        speculation: asyncio.Task[tuple[str, float]] | None,
+        speculation: Transcription | None,
     ) -> None:
         assert self._group is not None
         self._cancel_active()
@@ -411,24 +352,10 @@ class VoicePipeline:
                                                name=f"voice-turn-{turn.id}")
         self._active.add_done_callback(lambda _: self._changed.set())
 
-    @staticmethod
-    def _trim_to_wake(audio: AudioChunk, wake_at: float | None) -> AudioChunk:
-        """Drop what was said long before the wake word (chatter in the same utterance)."""
-        if wake_at is None:
-            return audio
-        cut = round((wake_at - _WAKE_LOOKBACK_S - audio.timestamp) * audio.format.rate)
-        if cut <= 0:
-            return audio
-        return AudioChunk(audio.samples[cut:], audio.format, audio.timestamp + cut / audio.format.rate)
-
-    async def _transcribe(
-        self, audio: AudioChunk, metrics: TurnMetrics, speculation: asyncio.Task[tuple[str, float]] | None = None
-    ) -> str:
+    async def _transcribe(self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None) -> str:
         """The transcript: from the speculative run when it covers the utterance, else now."""
-        if speculation is not None:
-            text, took_ms = await speculation
-        else:
-            text, took_ms = await self._transcribe_timed(audio)
+        assert self.stt is not None
+        text, took_ms = await speculation if speculation is not None else await self.stt.transcribe(audio)
         metrics.stt_ms += took_ms
         metrics.mark("transcript", max(metrics.start, time.perf_counter()))
         return text
@@ -438,17 +365,17 @@ class VoicePipeline:
         turn: _Turn,
         utt: HeardUtterance,
         verdict: Verdict,
-        speculation: asyncio.Task[tuple[str, float]] | None,
+        speculation: Transcription | None,
     ) -> None:
         token = _current_turn.set(turn)
         metrics = turn.metrics
         result: TurnResult | None = None
         started = cancelled = False
         try:
-            audio = self._trim_to_wake(utt.audio, verdict.wake_at)
+            audio = trim_to_wake(utt.audio, verdict.wake_at)
             content: str | tuple[ContentPart, ...]
             text = ""
-            if self.audio_native and (self.models.stt is None or utt.duration_s > self.config.turns.stop_max_s):
+            if self.audio_native and (self.stt is None or utt.duration_s > self.config.turns.stop_max_s):
                 if verdict.wake_at is not None and utt.end - verdict.wake_at < _WAKE_ONLY_S:
                     self.turns.rearm(utt.end)
                     await self._ignore("wake_only", utt)
@@ -491,15 +418,18 @@ class VoicePipeline:
     # --- stop ----------------------------------------------------------------------------------
 
     async def _stop_check(
-        self, utt: HeardUtterance, received: float, speculation: asyncio.Task[tuple[str, float]] | None
+        self, utt: HeardUtterance, received: float, speculation: Transcription | None
     ) -> None:
         metrics = TurnMetrics(start=received)
-        if self.models.stt is None:
+        if self.stt is None:
             await self._ignore("no_stt_for_stop_check", utt)
             return
         text = await self._transcribe(utt.audio, metrics, speculation)
         if not is_stop_command(strip_wake_words(text, self.config.wake_phrase)):
             await self._ignore("not_a_stop", utt, text)
+            return
+        if utt.playback_share > 0.3 and self._own_words.contains(text):
+            await self._ignore("own_voice", utt, text)  # the robot heard itself say "stop"
             return
         turn = self._new_turn(metrics)
         try:
@@ -511,22 +441,28 @@ class VoicePipeline:
     async def _stop(self, text: str, at: float, turn: _Turn) -> None:
         """Stop the robot now: its stop tool, straight; the active task cancelled; no model."""
         self.stats.stops += 1
-        metrics = turn.metrics
+        metrics, tool = turn.metrics, self.config.stop_tool
         cancelled = self._cancel_active()
         self.speech.interrupt()
-        metrics.mark("stop_call")
+        metrics.mark(f"tool_call:{tool}")
+        called = ToolCalled(f"local-stop-{turn.id}", tool, {})
         await self._emit(StopHeard(text, at, cancelled))
+        started = time.perf_counter()
         try:
             async with asyncio.timeout(self.config.stop_timeout_s):
-                outcome = await self.assistant.tools.call(self.config.stop_tool, {})
+                outcome = await self.assistant.tools.call(tool, {})
             ok, detail = not outcome.is_error, outcome.text
         except TimeoutError:
             ok, detail = False, f"the stop tool did not answer within {self.config.stop_timeout_s:g} s"
-        metrics.mark("stop_result")
+        took_ms = (time.perf_counter() - started) * 1000.0
+        metrics.tools_ms += took_ms
+        metrics.mark(f"tool_result:{tool}")
         log.info("spoken stop: %s (%s)", "robot stopped" if ok else "STOP FAILED", detail)
-        await self._emit(RobotStopped(ok, detail, metrics.marks.get("stop_result", 0.0)))
-        self.speech.say(self.config.speech.stop_reply if ok else "I could not stop the robot!",
-                        turn=turn.id, kind="stop", metrics=metrics)
+        await self._emit(RobotStopped(ok, detail, metrics.marks[f"tool_result:{tool}"]))
+        reply = self.config.speech.stop_reply if ok else "I could not stop the robot!"
+        self.speech.say(reply, turn=turn.id, kind="stop", metrics=metrics)
+        returned = ToolReturned(called.call_id, tool, detail, not ok, took_ms)
+        self.results.append(TurnResult(reply, (called,), (returned,), metrics))
         await self.speech.idle(timeout=30.0)
 
     # --- the assistant's events -------------------------------------------------------------------
@@ -557,6 +493,7 @@ class VoicePipeline:
         await self._emit(event)
 
     async def _on_spoken(self, event: SentenceSpoken) -> None:
+        self._own_words.add(event.text)
         await self._emit(event)
 
     def _save_answer(self, turn_id: int) -> None:

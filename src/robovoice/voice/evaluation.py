@@ -1,0 +1,93 @@
+"""Audio cases for `robovoice eval` (DESIGN.md §6): each clip through the whole pipeline.
+
+    async with open_audio_frontend(config) as audio:
+        report = await run_eval(cases, backend, open_robot, audio=audio)
+
+Every clip is spoken into a fresh `SimulatedRoom` (echo of the robot's answer included)
+and heard by a fresh `VoicePipeline` — wake word, VAD, speech-to-text (or the audio itself
+for an audio-capable backend), the assistant's turn, speech — sharing the loaded models.
+The turn the clip led to (or None when the assistant rightly did nothing: no wake word) is
+what gets scored; a spoken stop counts as its ``stop_robot`` call.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import AsyncIterator
+from contextlib import asynccontextmanager
+from dataclasses import dataclass
+from typing import Any
+
+from robovoice.assistant.loop import Assistant, TurnResult
+from robovoice.audio.wav import read_wav
+from robovoice.config import Config
+from robovoice.eval.cases import Case
+from robovoice.voice.config import VoiceConfig, from_settings
+from robovoice.voice.events import PipelineEvent, TranscriptReady, UtteranceIgnored, WakeWordHeard
+from robovoice.voice.models import VoiceModels, load_voice_models
+from robovoice.voice.pipeline import VoicePipeline
+from robovoice.voice.room import SimulatedRoom
+
+log = logging.getLogger(__name__)
+
+
+@dataclass
+class VoiceFrontEnd:
+    """`robovoice.eval.runner.AudioFrontEnd` over the voice pipeline (see module docstring).
+    `speed`: how much faster than real time the room plays the clip."""
+
+    models: VoiceModels
+    config: VoiceConfig
+    speed: float = 1.0
+    turn_timeout_s: float = 180.0
+
+    async def run_clip(self, case: Case, assistant: Assistant) -> tuple[TurnResult | None, dict[str, Any]]:
+        assert case.audio is not None
+        audio = read_wav(case.audio)
+        room = SimulatedRoom(speed=self.speed)
+        heard: list[PipelineEvent] = []
+        pipeline = VoicePipeline(self.models, assistant.backend, assistant.tools, source=room.mic,
+                                 sink=room.speaker, reference=room.reference, config=self.config,
+                                 observer=heard.append)
+
+        async def speak() -> None:
+            try:
+                speech = room.say(audio, gap_s=0.3)
+                await speech.finished(timeout=audio.duration_s / self.speed + 30.0)
+                await room.until(room.now + self.config.endpointer.end_silence_s + 0.3)
+                if not await pipeline.wait_idle(self.turn_timeout_s):
+                    log.warning("case %s: the pipeline was still busy after %.0f s", case.id, self.turn_timeout_s)
+            finally:
+                room.close()
+
+        async with asyncio.TaskGroup() as group:
+            group.create_task(pipeline.run(finish_timeout_s=10.0), name=f"eval-{case.id}-pipeline")
+            group.create_task(speak(), name=f"eval-{case.id}-speak")
+        transcripts = [e.text for e in heard if isinstance(e, TranscriptReady)]
+        extra: dict[str, Any] = {
+            "wake_words": sum(isinstance(e, WakeWordHeard) for e in heard),
+            "transcripts": transcripts,
+            "ignored": [e.reason for e in heard if isinstance(e, UtteranceIgnored)],
+            "stops": pipeline.stats.stops,
+        }
+        results = pipeline.results
+        if not results:
+            return None, extra
+        if len(results) == 1:
+            return results[0], extra
+        merged = TurnResult(" ".join(r.reply for r in results), tuple(c for r in results for c in r.calls),
+                            tuple(o for r in results for o in r.outcomes), results[0].metrics,
+                            any(r.fell_back for r in results))
+        return merged, extra
+
+
+@asynccontextmanager
+async def open_audio_frontend(
+    config: Config | None = None, *, models: VoiceModels | None = None, speed: float = 1.0
+) -> AsyncIterator[VoiceFrontEnd]:
+    """Load the voice models (unless given) and yield the front end for audio cases."""
+    settings = (config or Config()).voice
+    if models is None:
+        models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model)
+    yield VoiceFrontEnd(models, from_settings(settings), speed)

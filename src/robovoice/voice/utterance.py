@@ -1,0 +1,129 @@
+"""What a heard command becomes before the model sees it: wake phrase removed, trimmed,
+encoded as WAV, transcribed (speculatively, inside the end-of-turn silence), and checked
+against what the robot itself just said."""
+
+from __future__ import annotations
+
+import asyncio
+import difflib
+import io
+import re
+import time
+import wave
+from collections import deque
+from collections.abc import Callable, Coroutine
+from dataclasses import dataclass
+from typing import Any
+
+from robovoice.audio.format import AudioChunk
+from robovoice.audio.stt import Transcriber
+from robovoice.voice.inference import ModelExecutor
+from robovoice.voice.stop import normalise
+
+WAKE_LOOKBACK_S = 1.6  # a command's audio starts at most this long before its wake word
+
+
+def wav_bytes(audio: AudioChunk) -> bytes:
+    """A chunk as a complete 16-bit PCM WAV file (what `AudioPart` sends)."""
+    buf = io.BytesIO()
+    with wave.open(buf, "wb") as wf:
+        wf.setnchannels(audio.format.channels)
+        wf.setsampwidth(2)
+        wf.setframerate(audio.format.rate)
+        wf.writeframes(audio.bytes)
+    return buf.getvalue()
+
+
+def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
+    """Remove the wake phrase from the start of a transcript, tolerating how speech-to-text
+    spells it ("Hey, Jarvis,", "Hey Jervis", "Jarvis,"); text after it is kept as said."""
+    words = list(re.finditer(r"[A-Za-z']+", text))
+    target = phrase.lower().split()
+    for k in range(len(target), 0, -1):
+        if len(words) < k:
+            continue
+        heard = " ".join(w.group(0).lower() for w in words[:k])
+        if difflib.SequenceMatcher(None, heard, " ".join(target[-k:])).ratio() >= 0.75:
+            return text[words[k - 1].end() :].lstrip(" ,.!?;:-").strip()
+    return text.strip()
+
+
+def trim_to_wake(audio: AudioChunk, wake_at: float | None) -> AudioChunk:
+    """Drop what was said long before the wake word (chatter in the same utterance)."""
+    if wake_at is None:
+        return audio
+    cut = round((wake_at - WAKE_LOOKBACK_S - audio.timestamp) * audio.format.rate)
+    if cut <= 0:
+        return audio
+    return AudioChunk(audio.samples[cut:], audio.format, audio.timestamp + cut / audio.format.rate)
+
+
+Transcription = asyncio.Task[tuple[str, float]]
+TaskFactory = Callable[[Coroutine[Any, Any, tuple[str, float]]], Transcription]
+
+
+@dataclass(frozen=True, slots=True)
+class _Speculation:
+    onset: float
+    at: float
+    task: Transcription
+
+
+class Transcribing:
+    """Speech-to-text on the model's executor, with one speculative run at a time: started
+    at a pause of an utterance (`speculate`), used when the utterance turns out to have
+    ended there (`take`), dropped when speech went on."""
+
+    def __init__(self, stt: Transcriber, executor: ModelExecutor) -> None:
+        self.stt = stt
+        self._executor = executor
+        self._speculation: _Speculation | None = None
+
+    async def transcribe(self, audio: AudioChunk) -> tuple[str, float]:
+        """(text, model milliseconds)."""
+        started = time.perf_counter()
+        transcript = await self._executor.run(self.stt.transcribe, audio)
+        return transcript.text, (time.perf_counter() - started) * 1000.0
+
+    def speculate(self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory) -> None:
+        self.drop()
+        self._speculation = _Speculation(onset, at, create_task(self.transcribe(audio)))
+
+    def drop(self) -> None:
+        if self._speculation is not None:
+            self._speculation.task.cancel()
+            self._speculation = None
+
+    def take(self, start: float, end: float) -> Transcription | None:
+        """The speculative run covering the utterance `start`..`end`, if there is one."""
+        spec, self._speculation = self._speculation, None
+        if spec is None:
+            return None
+        if abs(spec.onset - start) < 1e-6 and spec.at >= end - 1e-6:
+            return spec.task
+        spec.task.cancel()
+        return None
+
+
+class OwnWords:
+    """What the robot said lately, to recognise its own words coming back through the
+    microphone in a transcript (a stop the robot said itself is no stop)."""
+
+    def __init__(self, keep_s: float = 15.0, clock: Callable[[], float] = time.monotonic) -> None:
+        self._said: deque[tuple[float, str]] = deque()
+        self._keep_s = keep_s
+        self._clock = clock
+
+    def add(self, text: str) -> None:
+        now = self._clock()
+        self._said.append((now, normalise(text)))
+        while self._said and now - self._said[0][0] > self._keep_s:
+            self._said.popleft()
+
+    def contains(self, heard: str) -> bool:
+        """Whether the robot recently said the words of `heard` (in this order)."""
+        words = normalise(heard)
+        if not words:
+            return False
+        now = self._clock()
+        return any(now - t <= self._keep_s and f" {words} " in f" {said} " for t, said in self._said)

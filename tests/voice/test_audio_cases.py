@@ -1,0 +1,65 @@
+"""The audio evaluation set (tests/data/eval/audio.jsonl, DESIGN.md §6) and running audio
+cases through the voice pipeline the way `robovoice eval` does."""
+
+from __future__ import annotations
+
+import wave
+from pathlib import Path
+
+import pytest
+from voice_kit import DATA, keyword_router
+
+from robovoice.assistant.connect import RobotTarget, open_robot
+from robovoice.eval.cases import load_cases
+from robovoice.eval.runner import run_eval
+from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
+from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.voice.evaluation import open_audio_frontend
+from robovoice.voice.models import VoiceModels
+
+CASES = DATA / "eval" / "audio.jsonl"
+
+
+def test_the_audio_set_is_complete() -> None:
+    cases = load_cases(CASES)
+    assert len(cases) >= 40
+    assert all(c.audio is not None and c.text is None for c in cases)
+    assert sum(1 for c in cases if c.wake) >= 20 and sum(1 for c in cases if c.wake is False) >= 15
+    notes = " ".join(str(getattr(c, "note", "")) for c in cases)
+    for voice in ("piper", "espeak:"):
+        assert voice in notes
+    for noise in ("clean", "20 dB", "10 dB"):
+        assert noise in notes
+    total = 0
+    for case in cases:
+        assert case.audio is not None
+        with wave.open(str(case.audio)) as wf:
+            assert (wf.getnchannels(), wf.getsampwidth(), wf.getframerate()) == (1, 2, 16000), case.id
+            seconds = wf.getnframes() / wf.getframerate()
+        assert 1.5 < seconds < 6.0, case.id
+        total += Path(case.audio).stat().st_size
+    assert total < 8_000_000
+
+
+@pytest.mark.integration
+@pytest.mark.timeout(300)
+async def test_audio_cases_through_the_pipeline(voice_models: VoiceModels) -> None:
+    wanted = ["wake-projector-on-1", "nowake-02", "wake-stop-2", "nowake-stop-2"]
+    cases = [c for c in load_cases(CASES) if c.id in wanted]
+    async with FakeOpenAIServer(default=CallbackReply(keyword_router)) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            async with open_audio_frontend(models=voice_models) as audio:
+                report = await run_eval(cases, backend, lambda: open_robot(RobotTarget(sim_speed=2.0)),
+                                        audio=audio)
+        finally:
+            await backend.aclose()
+    summary = report.to_dict()
+    by_id = {r["id"]: r for r in summary["results"]}
+    assert all(r["passed"] for r in summary["results"]), [(r["id"], r["reason"]) for r in summary["results"]]
+    assert by_id["nowake-02"]["calls"] == [] and by_id["nowake-02"]["wake_words"] == 0
+    assert by_id["wake-stop-2"]["calls"] == [{"tool": "stop_robot", "args": {}}] and by_id["wake-stop-2"]["stops"] == 1
+    assert by_id["nowake-stop-2"]["stops"] == 1
+    # the stops never asked the model: one request for the projector and its tool result only
+    assert [r.last_user_text for r in server.requests] == ["turn on the projector."] * 2
+    assert "first_audio" in summary["stages"] and "transcript" in summary["stages"]
