@@ -48,6 +48,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     add_llm_args(ev)
     ev.add_argument("--json", action="store_true", help="print one JSON object with the summary and every case")
     ev.add_argument("--limit", type=int, help="run only the first N cases")
+    ev.add_argument("--quiet", action="store_true", help="no per-case lines on stderr")
     ev.add_argument("--only", action="append", metavar="ID", help="run only these case ids")
     ev.set_defaults(run=run_eval_command)
 
@@ -143,10 +144,10 @@ async def _eval(args: argparse.Namespace) -> int:
 
             async with open_audio_frontend(config) as audio:
                 report = await run_eval(cases, backend, lambda: open_robot(target), audio=audio,
-                                        on_result=None if args.json else _print_case)
+                                        on_result=None if args.quiet else _print_case)
         else:
             report = await run_eval(cases, backend, lambda: open_robot(target),
-                                    on_result=None if args.json else _print_case)
+                                    on_result=None if args.quiet else _print_case)
     finally:
         await backend.aclose()
     summary = report.to_dict()

@@ -27,6 +27,7 @@ from robovoice.audio.format import (
     AudioFormat,
     Float32Array,
     as_float32,
+    concat,
     convert,
     float32_to_int16,
 )
@@ -86,6 +87,7 @@ class SimulatedRoom:
         noise: AudioChunk | None = None,
         noise_gain: float = 1.0,
         start: float = 0.0,
+        record: bool = False,
     ) -> None:
         if speed <= 0:
             raise AudioError(f"room speed must be positive, got {speed}")
@@ -108,6 +110,8 @@ class SimulatedRoom:
         self._tick = asyncio.Event()
         self._closed = False
         self.played: list[tuple[float, AudioChunk]] = []  # the robot's speech as it sounded
+        self._record = record
+        self._recorded: list[AudioChunk] = []
         self.mic = RoomMicrophone(self)
         self.speaker = RoomSpeaker(self)
 
@@ -187,7 +191,14 @@ class SimulatedRoom:
                     items.remove(entry)
         if self._robot_queued == 0:
             self._drained.set()
-        return AudioChunk(float32_to_int16(out), MODEL_FORMAT, t0)
+        chunk = AudioChunk(float32_to_int16(out), MODEL_FORMAT, t0)
+        if self._record:
+            self._recorded.append(chunk)
+        return chunk
+
+    def recording(self) -> AudioChunk | None:
+        """Everything the microphone heard (with ``record=True``), joined."""
+        return concat(self._recorded) if self._recorded else None
 
     @staticmethod
     def _mix(items: list[tuple[int, Float32Array, Speech]], i0: int, n: int) -> Float32Array:
