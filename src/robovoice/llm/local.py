@@ -106,7 +106,10 @@ class LocalLlamaBackend:
         deadlines: Deadlines = LOCAL_DEADLINES,
         max_tokens: int = 256,
         temperature: float = 0.0,
-        max_calls_per_turn: int = 4,
+        # One call per model step by default: allowed more, the 1.5B model appends unrelated calls
+        # (pose, camera, battery) to the one asked for, tripling turn latency (measured on the eval
+        # set); the assistant loop hands it the results and another step for multi-step requests.
+        max_calls_per_turn: int = 1,
         cache_dir: Path | None = None,
     ) -> None:
         if not llama_cpp_available():
@@ -222,6 +225,8 @@ class LocalLlamaBackend:
             turn.stats.completion_tokens += int(done["usage"]["completion_tokens"])
             yield tool_call_from_raw(f"call_{index}_{tool.name}_{int(time.time() * 1000)}", tool.name, arguments)
             index += 1
+            if index >= self.max_calls_per_turn:
+                break  # no need to ask the model whether another call follows
             prompt += arguments + "\n"
             head = self._complete(
                 turn, prompt, stream=False, max_tokens=16, grammar=self._grammar(fmt.next_call_grammar(tools))
