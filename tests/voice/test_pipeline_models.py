@@ -10,6 +10,7 @@ from voice_kit import clip, keyword_router, voice_session, wait_until
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, silence
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, Pacing, TextReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.voice.config import EchoConfig, VoiceConfig
 from robovoice.voice.events import (
     BargedIn,
     RobotStopped,
@@ -21,7 +22,6 @@ from robovoice.voice.events import (
     WakeWordHeard,
     WakeWordRejected,
 )
-from robovoice.voice.config import EchoConfig, VoiceConfig
 from robovoice.voice.models import VoiceModels
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(180)]

@@ -20,8 +20,8 @@ from robovoice.assistant.robot_tools import RobotTools
 from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, Samples, as_float32, float32_to_int16
 from robovoice.audio.stt import Transcript
-from robovoice.audio.wav import read_wav
 from robovoice.audio.wake import WAKE_FRAME_SAMPLES
+from robovoice.audio.wav import read_wav
 from robovoice.llm.base import LLMBackend
 from robovoice.sim import SimRobot
 from robovoice.voice.config import VoiceConfig
@@ -35,6 +35,7 @@ EVAL_AUDIO = DATA / "eval" / "audio"
 TEST_AUDIO = DATA / "audio"
 RATE = MODEL_FORMAT.rate
 WAKE_TONE_HZ = 1000.0
+ROOM_ECHO = EchoPath()  # the robot's speaker 6 dB louder at its microphone than the direct path, 4 reflections
 
 E = TypeVar("E")
 
@@ -181,7 +182,7 @@ async def voice_session(
     *,
     sim_speed: float = 20.0,
     speed: float = 1.0,
-    echo: EchoPath | None = EchoPath(),
+    echo: EchoPath | None = ROOM_ECHO,
     noise: AudioChunk | None = None,
     config: VoiceConfig | None = None,
     output_dir: Path | None = None,

@@ -98,42 +98,39 @@ class EchoMeter:
     """Remembers the echo canceller's block levels for the last seconds and judges windows.
 
     The *leak* is how much of the echo the canceller leaves: residual over microphone
-    power, summed over the last `leak_window_s` seconds of blocks with playback (while the
-    canceller converges this is high, once converged low). A window heard during playback
+    power, summed over the blocks with playback in the `leak_window_s` seconds before the
+    window judged (while the canceller converges this is high, once converged low). A window heard during playback
     is the person's when its own residual/microphone ratio exceeds the leak by
     `margin_db`: talk over the robot raises the residual far above the leak; the robot's
     own voice leaves it at the leak. Before enough blocks were seen the leak is taken as 1
     (no cancellation assumed): nothing then counts as the person.
     """
 
-    def __init__(self, *, margin_db: float = 6.0, history_s: float = 12.0, leak_window_s: float = 8.0) -> None:
+    def __init__(self, *, margin_db: float = 6.0, history_s: float = 40.0, leak_window_s: float = 30.0) -> None:
         self.margin = 10 ** (margin_db / 10)
         self._blocks: deque[tuple[float, BlockStats]] = deque()
         self._history_s = history_s
         self._leak_window_s = leak_window_s
-        self._leak = 1.0
-        self._leak_at = -math.inf
 
     def add(self, t: float, stats: BlockStats) -> None:
         self._blocks.append((t, stats))
         while self._blocks and t - self._blocks[0][0] > self._history_s:
             self._blocks.popleft()
 
-    def leak(self, now: float) -> float:
-        if now - self._leak_at < 0.25:
-            return self._leak
-        playing = [
-            s for t, s in self._blocks if now - t <= self._leak_window_s and s.reference > _REF_ACTIVE and s.mic > 1e-7
-        ]
-        if len(playing) >= 25:
-            self._leak = sum(s.residual for s in playing) / sum(s.mic for s in playing)
-        else:
-            self._leak = 1.0
-        self._leak_at = now
-        return self._leak
+    def leak(self, before: float) -> float:
+        """The leak measured on the playback of the `leak_window_s` seconds before `before`."""
+        residual = mic = 0.0
+        count = 0
+        for t, s in self._blocks:
+            if before - self._leak_window_s <= t < before and s.reference > _REF_ACTIVE and s.mic > 1e-7:
+                residual += s.residual
+                mic += s.mic
+                count += 1
+        return residual / mic if count >= 25 else 1.0
 
     def judge(self, start: float, end: float) -> tuple[float, bool]:
-        """(share of the window with playback, whether the person is audible over the echo)."""
+        """(share of the window with playback, whether the person is audible over the echo).
+        The leak is measured before the window, so talk inside it cannot hide itself."""
         inside = [s for t, s in self._blocks if start - 0.016 <= t <= end]
         if not inside:
             return 0.0, True
@@ -143,7 +140,7 @@ class EchoMeter:
             return share, True
         residual = sum(s.residual for s in playing)
         mic = sum(s.mic for s in playing) + 1e-12
-        return share, residual / mic > self.leak(end) * self.margin
+        return share, residual / mic > self.leak(start - 0.016) * self.margin
 
 
 class FrontEnd:

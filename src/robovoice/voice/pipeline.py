@@ -297,19 +297,17 @@ class VoicePipeline:
         speculation = self.stt.take(utt.start, utt.end) if self.stt is not None else None
         if verdict.action is Action.COMMAND and (verdict.wake_at is not None or not own_voice):
             self._start_command(utt, verdict, received, compute_s, speculation)
-            return
-        if speculation is not None and verdict.action is not Action.STOP_CHECK:
-            speculation.cancel()
-            speculation = None
-        if own_voice:
-            await self._ignore("own_voice", utt)
         elif verdict.action is Action.STOP_CHECK:
+            # no acoustic gate here: a missed stop is worse than a needless one, and the robot's
+            # own "stop" is recognised by its words (`OwnWords`) instead
             assert self._group is not None
             task = self._group.create_task(self._stop_check(utt, received, speculation), name="voice-stop-check")
             self._checks.add(task)
             task.add_done_callback(self._check_done)
         else:
-            await self._ignore(verdict.reason or "no_wake_word", utt)
+            if speculation is not None:
+                speculation.cancel()
+            await self._ignore("own_voice" if own_voice else verdict.reason or "no_wake_word", utt)
 
     def _check_done(self, task: asyncio.Task[None]) -> None:
         self._checks.discard(task)

@@ -1,0 +1,261 @@
+"""Benchmarks of the voice pipeline (DESIGN.md §7), figures for docs/performance.md.
+
+- `bench_local`: end of speech -> first audio out with the all-local stack (openWakeWord,
+  Silero, Moonshine, the embedded Qwen2.5-Coder-1.5B, MCP tool calls on the sim robot,
+  Piper), p50/p95 of every stage, from spoken commands synthesised with Piper and played
+  into a `SimulatedRoom` in real time.
+- `bench_overhead`: the pipeline's own cost per turn with every model replaced by an
+  instant fake (so end of speech -> first audio *is* the overhead: framing, queues, tasks,
+  executors, the assistant loop, the speech queue), plus the front end's CPU per second of
+  audio.
+
+    python -m robovoice.voice.bench overhead --turns 30
+    python -m robovoice.voice.bench local --turns 12 --json
+
+(Equivalent to ``robovoice bench voice`` once that sub-command is registered.)
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import json
+import logging
+import math
+import os
+import platform
+import time
+from collections.abc import AsyncIterator, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from robovoice.assistant.metrics import percentile
+from robovoice.assistant.robot_tools import ProgressCallback, RobotTools, ToolOutcome
+from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, Samples, as_float32, concat, convert, float32_to_int16
+from robovoice.audio.format import silence as make_silence
+from robovoice.audio.stt import Transcript
+from robovoice.audio.wake import WAKE_FRAME_SAMPLES
+from robovoice.llm.base import ChatMessage, Finished, LLMEvent, TextDelta, ToolSpec
+from robovoice.voice.events import PipelineEvent, VoiceTurnFinished
+from robovoice.voice.models import VoiceModels
+from robovoice.voice.pipeline import VoicePipeline
+from robovoice.voice.room import SimulatedRoom
+
+log = logging.getLogger(__name__)
+
+STAGES = ("endpoint", "transcript", "first_token", "tool_call", "tool_result", "first_sentence", "first_audio")
+
+#: Commands for the all-local benchmark: tool calls, a question, small talk.
+LOCAL_COMMANDS = (
+    "Hey Jarvis, turn on the projector.",
+    "Hey Jarvis, how much battery do you have left?",
+    "Hey Jarvis, switch the projector off.",
+    "Hey Jarvis, where are you right now?",
+    "Hey Jarvis, go to the kitchen.",
+    "Hey Jarvis, call Anna.",
+    "Hey Jarvis, end the call.",
+    "Hey Jarvis, go back to your charging dock.",
+)
+
+
+@dataclass(frozen=True, slots=True)
+class StageFigures:
+    p50: float
+    p95: float
+    n: int
+
+
+def stage_table(turns: Sequence[dict[str, float]]) -> dict[str, StageFigures]:
+    """p50/p95 per stage (``tool_call:<name>`` folded into ``tool_call``)."""
+    values: dict[str, list[float]] = {}
+    for marks in turns:
+        folded: dict[str, float] = {}
+        for stage, ms in marks.items():
+            key = stage.split(":", 1)[0]
+            folded[key] = min(ms, folded.get(key, math.inf))
+        for stage, ms in folded.items():
+            values.setdefault(stage, []).append(ms)
+    return {s: StageFigures(round(percentile(v, 50), 1), round(percentile(v, 95), 1), len(v))
+            for s, v in sorted(values.items())}
+
+
+def machine() -> dict[str, Any]:
+    load = os.getloadavg() if hasattr(os, "getloadavg") else (math.nan,) * 3
+    return {"cpus": os.cpu_count(), "python": platform.python_version(), "load_avg_1_5_15": [round(x, 2) for x in load]}
+
+
+# --- instant fakes for the overhead measurement -----------------------------------------------------
+
+
+class _ToneWake:
+    """Wake word "model": a 1 kHz tone marks the wake phrase (no inference cost)."""
+
+    frame_samples: int = WAKE_FRAME_SAMPLES
+
+    def __init__(self) -> None:
+        t = np.arange(WAKE_FRAME_SAMPLES) / MODEL_FORMAT.rate
+        self._c, self._s = np.cos(2 * np.pi * 1000 * t), np.sin(2 * np.pi * 1000 * t)
+
+    def process(self, frame: Samples) -> float:
+        x = as_float32(frame).astype(np.float64)
+        total = float(np.sum(x * x)) + 1e-12
+        tone = (float(np.dot(x, self._c)) ** 2 + float(np.dot(x, self._s)) ** 2) * 2 / len(x)
+        return 0.99 if total > 1e-4 and tone / total > 0.5 else 0.0
+
+    def reset(self) -> None:
+        return None
+
+
+class _InstantStt:
+    def transcribe(self, audio: AudioChunk) -> Transcript:
+        return Transcript("Hey Jarvis, say something.", audio.duration_s)
+
+
+class _InstantBackend:
+    """An in-process model that answers at once with one sentence."""
+
+    name = "instant"
+    accepts_audio = False
+
+    async def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> AsyncIterator[LLMEvent]:
+        yield TextDelta("Okay, done.")
+        yield Finished("stop")
+
+    async def aclose(self) -> None:
+        return None
+
+
+class _NoTools(RobotTools):
+    """A robot without tools (the overhead run needs no MCP)."""
+
+    async def specs(self) -> list[ToolSpec]:
+        return []
+
+    async def call(self, name: str, arguments: dict[str, Any], on_progress: ProgressCallback | None = None
+                   ) -> ToolOutcome:
+        return ToolOutcome("{}", False, 0.0)
+
+
+def _tone_command(seconds: float = 1.0) -> AudioChunk:
+    rng = np.random.default_rng(7)
+    n_tone, n_talk = round(0.5 * MODEL_FORMAT.rate), round(seconds * MODEL_FORMAT.rate)
+    t = np.arange(n_tone) / MODEL_FORMAT.rate
+    tone = 0.14 * np.sin(2 * np.pi * 1000 * t)
+    talk = rng.standard_normal(n_talk) * 0.1 * (0.6 + 0.4 * np.sin(2 * np.pi * 4 * np.arange(n_talk) / 16000))
+    return AudioChunk(float32_to_int16(np.concatenate([tone, talk]).astype(np.float32)), MODEL_FORMAT)
+
+
+async def _run_turns(pipeline: VoicePipeline, room: SimulatedRoom, commands: Sequence[AudioChunk],
+                     finished: list[VoiceTurnFinished], *, reset: bool, timeout: float) -> None:
+    try:
+        await room.until(room.now + 0.5)
+        for audio in commands:
+            if reset:
+                pipeline.assistant.reset()  # every turn from a fresh conversation
+            await room.say(audio, gap_s=0.3).finished(timeout)
+            await room.until(room.now + 0.8, timeout)
+            if not await pipeline.wait_idle(timeout):
+                log.warning("a benchmark turn did not finish within %.0f s", timeout)
+    finally:
+        room.close()
+
+
+async def bench_overhead(turns: int = 30, *, speed: float = 4.0) -> dict[str, Any]:
+    """End of speech -> first audio with instant models: the pipeline's own time per turn."""
+    models = VoiceModels(wake=_ToneWake(), vad=EnergyVAD(), stt=_InstantStt(), tts=ToneSynthesizer(0.01),
+                         playback_wake=_ToneWake())
+    room = SimulatedRoom(speed=speed)
+    finished: list[VoiceTurnFinished] = []
+
+    def observe(event: PipelineEvent) -> None:
+        if isinstance(event, VoiceTurnFinished) and not event.cancelled:
+            finished.append(event)
+
+    pipeline = VoicePipeline(models, _InstantBackend(), _NoTools(), source=room.mic, sink=room.speaker,
+                             reference=room.reference, observer=observe, moving=lambda: False)
+    command = _tone_command()
+    async with asyncio.TaskGroup() as group:
+        group.create_task(pipeline.run(finish_timeout_s=10.0))
+        group.create_task(_run_turns(pipeline, room, [command] * turns, finished, reset=True, timeout=30.0))
+    marks = [dict(f.latency_ms) for f in finished]
+    first_audio = [m["first_audio"] for m in marks if "first_audio" in m]
+    return {
+        "what": "end of speech -> first audio out with instant fake models (= pipeline overhead per turn)",
+        "turns": len(finished),
+        "first_audio_ms": {"p50": round(percentile(first_audio, 50), 2), "p95": round(percentile(first_audio, 95), 2),
+                           "max": round(max(first_audio), 2)} if first_audio else None,
+        "stages": {k: {"p50": v.p50, "p95": v.p95, "n": v.n} for k, v in stage_table(marks).items()},
+        "frontend_ms_per_audio_s": round(1000 * pipeline.stats.frontend_s / max(pipeline.stats.audio_s, 1e-9), 2),
+        "machine": machine(),
+    }
+
+
+async def bench_local(turns: int = 8, *, models: VoiceModels | None = None, sim_speed: float = 10.0,
+                      commands: Sequence[str] = LOCAL_COMMANDS) -> dict[str, Any]:
+    """The all-local stack, from spoken commands to first audio out, per stage."""
+    from robovoice.assistant.connect import RobotTarget, open_robot
+    from robovoice.assistant.prompt import SYSTEM_PROMPT
+    from robovoice.llm.local import LocalLlamaBackend
+    from robovoice.voice.models import load_voice_models
+
+    if models is None:
+        models = await asyncio.to_thread(load_voice_models)
+    said = [commands[i % len(commands)] for i in range(turns)]
+    audio = {text: concat([convert(models.tts.synthesize(text), MODEL_FORMAT), make_silence(MODEL_FORMAT, 0.1)])
+             for text in set(said)}
+    finished: list[VoiceTurnFinished] = []
+
+    def observe(event: PipelineEvent) -> None:
+        if isinstance(event, VoiceTurnFinished) and not event.cancelled:
+            finished.append(event)
+
+    local = LocalLlamaBackend()
+    try:
+        async with open_robot(RobotTarget(sim_speed=sim_speed)) as link:
+            await local.warm_up(SYSTEM_PROMPT, await link.tools.specs())
+            sim = link.sim
+            room = SimulatedRoom()
+            pipeline = VoicePipeline(models, local, link.tools, source=room.mic, sink=room.speaker,
+                                     reference=room.reference, observer=observe,
+                                     moving=(lambda: sim.state.moving) if sim is not None else None)
+            started = time.perf_counter()
+            async with asyncio.TaskGroup() as group:
+                group.create_task(pipeline.run(finish_timeout_s=60.0))
+                group.create_task(_run_turns(pipeline, room, [audio[t] for t in said], finished, reset=True,
+                                             timeout=180.0))
+            wall = time.perf_counter() - started
+    finally:
+        await local.aclose()
+    marks = [dict(f.latency_ms) for f in finished]
+    per_turn = [{"said": f.result.reply if f.result else "", **dict(f.latency_ms)} for f in finished]
+    return {
+        "what": "end of speech (end-of-turn detected) -> each stage, all-local stack, ms",
+        "turns": len(finished),
+        "stages": {k: {"p50": v.p50, "p95": v.p95, "n": v.n} for k, v in stage_table(marks).items()},
+        "per_turn": per_turn,
+        "wall_s": round(wall, 1),
+        "frontend_ms_per_audio_s": round(1000 * pipeline.stats.frontend_s / max(pipeline.stats.audio_s, 1e-9), 2),
+        "machine": machine(),
+    }
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m robovoice.voice.bench", description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("which", choices=["overhead", "local"])
+    parser.add_argument("--turns", type=int, default=None)
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.WARNING)
+    if args.which == "overhead":
+        result = asyncio.run(bench_overhead(args.turns or 30))
+    else:
+        result = asyncio.run(bench_local(args.turns or 8))
+    print(json.dumps(result, indent=1))  # the module's command-line entry point prints its result
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,151 @@
+"""Pure decision logic of the voice pipeline: turn-taking, the stop phrases, spoken progress,
+the wake phrase in transcripts, the robot's own words."""
+
+from __future__ import annotations
+
+import pytest
+
+from robovoice.voice.config import SpeechConfig, TurnTakingConfig
+from robovoice.voice.progress import ProgressNarrator
+from robovoice.voice.stop import is_stop_command
+from robovoice.voice.turns import Action, Phase, TurnTaking
+from robovoice.voice.utterance import OwnWords, strip_wake_words
+
+# --- turn-taking ----------------------------------------------------------------------------------
+
+
+def test_listening_ignores_speech_without_the_wake_word() -> None:
+    t = TurnTaking()
+    assert t.phase(0.0) is Phase.LISTENING
+    verdict = t.classify(1.0, 2.5, moving=False)
+    assert verdict.action is Action.IGNORE and verdict.reason == "no_wake_word"
+
+
+def test_wake_word_inside_the_utterance_makes_it_a_command_once() -> None:
+    t = TurnTaking()
+    t.wake(1.2)
+    assert t.phase(1.3) is Phase.WOKEN
+    assert t.addressed(0.8, 3.0)
+    verdict = t.classify(0.8, 3.0, moving=False)
+    assert verdict.action is Action.COMMAND and verdict.wake_at == 1.2
+    assert t.classify(4.0, 5.0, moving=False).action is Action.IGNORE, "a wake word is used once"
+
+
+def test_wake_word_then_pause_then_command_within_the_timeout() -> None:
+    t = TurnTaking(TurnTakingConfig(command_timeout_s=6.0))
+    t.wake(1.0)
+    t.rearm(1.3)  # the first utterance was the wake phrase alone
+    assert t.classify(3.0, 4.5, moving=False).action is Action.COMMAND
+    t.wake(10.0)
+    assert t.expire(17.0)
+    assert t.phase(17.0) is Phase.LISTENING
+    assert t.classify(18.0, 19.0, moving=False).action is Action.IGNORE
+
+
+def test_short_speech_while_moving_is_checked_for_a_stop() -> None:
+    t = TurnTaking(TurnTakingConfig(stop_max_s=2.5))
+    assert t.classify(1.0, 1.6, moving=True).action is Action.STOP_CHECK
+    assert t.classify(1.0, 5.0, moving=True).action is Action.IGNORE, "long talk is not a stop"
+
+
+def test_phases_through_a_turn_and_the_follow_up_window() -> None:
+    t = TurnTaking(TurnTakingConfig(follow_up_s=5.0, playback_tail_s=0.3))
+    t.wake(1.0)
+    t.classify(0.5, 2.0, moving=False)
+    t.turn_started()
+    assert t.phase(2.5) is Phase.IN_TURN and t.busy
+    t.playback(True, 3.0)
+    assert t.phase(3.0) is Phase.SPEAKING
+    t.turn_finished(asked_question=True)
+    t.playback(False, 6.0)
+    assert t.phase(6.5) is Phase.FOLLOW_UP and not t.busy
+    assert t.classify(6.1, 6.8, moving=False).action is Action.IGNORE, "inside the echo tail: not an answer"
+    t2 = TurnTaking(TurnTakingConfig(follow_up_s=5.0, playback_tail_s=0.3))
+    t2.turn_started()
+    t2.playback(True, 3.0)
+    t2.turn_finished(asked_question=True)
+    t2.playback(False, 6.0)
+    verdict = t2.classify(7.0, 8.0, moving=False)
+    assert verdict.action is Action.COMMAND and verdict.follow_up
+    assert t2.phase(12.0) is Phase.LISTENING
+
+
+def test_no_follow_up_after_a_statement() -> None:
+    t = TurnTaking()
+    t.turn_started()
+    t.playback(True, 1.0)
+    t.turn_finished(asked_question=False)
+    t.playback(False, 3.0)
+    assert t.phase(3.5) is Phase.LISTENING
+    assert t.classify(4.0, 5.0, moving=False).action is Action.IGNORE
+
+
+def test_a_cancelled_turn_opens_no_follow_up() -> None:
+    t = TurnTaking()
+    t.turn_started()
+    t.playback(True, 1.0)
+    t.turn_cancelled()
+    t.playback(False, 1.5)
+    assert t.phase(2.0) is Phase.LISTENING
+
+
+# --- stop phrases ------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("text", [
+    "Stop", "Stop!", "stop.", "Stop the robot!", "Halt!", "Stop, stop!", "Please stop.", "Stop now.",
+    "Hey Jarvis, stop!", "Jarvis, halt.", "Okay robot, stop right now!", "STOP STOP STOP", "Freeze!",
+    "Stop moving.", "Emergency stop!",
+])  # fmt: skip
+def test_stop_phrases(text: str) -> None:
+    assert is_stop_command(text)
+
+
+@pytest.mark.parametrize("text", [
+    "", "Don't stop.", "Stop the call.", "Stop at the kitchen.", "Start.", "Go to the bus stop.",
+    "I will stop by later.", "Stopwatch", "Hey Jarvis.", "Halte", "Please go to the kitchen and stop there",
+])  # fmt: skip
+def test_not_stop_phrases(text: str) -> None:
+    assert not is_stop_command(text)
+
+
+# --- progress ------------------------------------------------------------------------------------------
+
+
+def test_long_actions_are_acknowledged_then_reported_at_most_every_interval() -> None:
+    n = ProgressNarrator(SpeechConfig(progress_interval_s=8.0))
+    assert n.on_call("set_projector_power", {"on": True}, 0.0) is None
+    assert n.on_call("navigate_to", {"target": "kitchen"}, 0.0) == "On my way to the kitchen."
+    assert n.on_progress("navigate_to", 1.0, 8.0, "7 m to the kitchen", 2.0) is None, "throttled"
+    assert n.on_progress("navigate_to", 4.0, 8.0, "4 m to the kitchen", 8.5) == (
+        "Still on my way, 4 metres to the kitchen.")
+    assert n.on_progress("navigate_to", 5.0, 8.0, "3 m to the kitchen", 10.0) is None
+    assert n.on_progress("navigate_to", 8.0, 8.0, "arrived at the kitchen", 30.0) is None, "the model says the result"
+    assert n.on_call("return_to_dock", {}, 40.0) == "Going back to my charging dock."
+    assert n.on_progress("navigate_to", 2.0, 10.0, "1.5 m to the hallway", 60.0) == (
+        "Still on my way, 1.5 metres to the hallway.")
+
+
+# --- transcripts -------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("heard", "command"), [
+    ("Hey Jarvis, turn on the projector.", "turn on the projector."),
+    ("Hey, Jarvis,, which places do you know?", "which places do you know?"),
+    ("Hey Jervis go to the kitchen", "go to the kitchen"),
+    ("Jarvis, stop!", "stop!"),
+    ("Hey Jarvis.", ""),
+    ("Turn on the projector.", "Turn on the projector."),
+])  # fmt: skip
+def test_wake_phrase_is_removed_from_the_transcript(heard: str, command: str) -> None:
+    assert strip_wake_words(heard) == command
+
+
+def test_own_words_are_recognised_for_a_while() -> None:
+    now = [0.0]
+    own = OwnWords(keep_s=15.0, clock=lambda: now[0])
+    own.add("I will stop at the kitchen. Please stay where you are.")
+    assert own.contains("Stop.") and own.contains("stay where you are")
+    assert not own.contains("Stop the robot!")
+    now[0] = 20.0
+    assert not own.contains("Stop.")
