@@ -189,6 +189,7 @@ async def bench_overhead(turns: int = 30, *, speed: float = 4.0) -> dict[str, An
                            "max": round(max(first_audio), 2)} if first_audio else None,
         "stages": {k: {"p50": v.p50, "p95": v.p95, "n": v.n} for k, v in stage_table(marks).items()},
         "frontend_ms_per_audio_s": round(1000 * pipeline.stats.frontend_s / max(pipeline.stats.audio_s, 1e-9), 2),
+        "frontend_cpu_percent": round(100 * pipeline.stats.frontend_cpu_s / max(pipeline.stats.audio_s, 1e-9), 2),
         "machine": machine(),
     }
 
@@ -238,6 +239,7 @@ async def bench_local(turns: int = 8, *, models: VoiceModels | None = None, sim_
         "per_turn": per_turn,
         "wall_s": round(wall, 1),
         "frontend_ms_per_audio_s": round(1000 * pipeline.stats.frontend_s / max(pipeline.stats.audio_s, 1e-9), 2),
+        "frontend_cpu_percent": round(100 * pipeline.stats.frontend_cpu_s / max(pipeline.stats.audio_s, 1e-9), 2),
         "machine": machine(),
     }
 

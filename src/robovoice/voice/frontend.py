@@ -91,7 +91,8 @@ class FrontEndResult:
     events: tuple[FrontEndEvent, ...]
     now: float  # stream time at the end of the processed audio
     playing: bool  # playback (or its tail) at `now`
-    compute_s: float
+    compute_s: float  # wall time spent
+    cpu_s: float = 0.0  # CPU time spent (this thread)
 
 
 class EchoMeter:
@@ -201,12 +202,13 @@ class FrontEnd:
         """Blocking: run every complete 80 ms frame of `chunk` (16 kHz mono)."""
         if chunk.format.rate != MODEL_FORMAT.rate or chunk.format.channels != 1:
             raise AudioError(f"the front end takes 16 kHz mono audio, got {chunk.format}")
-        started = time.perf_counter()
+        started, cpu = time.perf_counter(), time.thread_time()
         events: list[FrontEndEvent] = []
         for frame in self._framer.push(chunk):
             events.extend(self._frame(frame))
         self.now = chunk.end_timestamp
-        return FrontEndResult(tuple(events), self.now, self.playing_at(self.now), time.perf_counter() - started)
+        return FrontEndResult(tuple(events), self.now, self.playing_at(self.now), time.perf_counter() - started,
+                              time.thread_time() - cpu)
 
     def flush(self) -> FrontEndResult:
         """End of the stream: close an utterance in progress."""

@@ -91,7 +91,8 @@ class PipelineStats:
     barge_ins: int = 0
     ignored: int = 0
     rejected_wakes: int = 0
-    frontend_s: float = 0.0
+    frontend_s: float = 0.0  # wall time in the front end
+    frontend_cpu_s: float = 0.0  # CPU time of the front end's thread
     audio_s: float = 0.0
 
 
@@ -216,6 +217,7 @@ class VoicePipeline:
     async def _handle(self, result: FrontEndResult, received: float) -> None:
         self._now = result.now
         self.stats.frontend_s += result.compute_s
+        self.stats.frontend_cpu_s += result.cpu_s
         self.turns.playback(result.playing or self.speech.busy, result.now)
         if self.turns.expire(result.now):
             log.info("wake word not followed by a command; listening again")
