@@ -240,3 +240,47 @@ async def test_remote_participant_saying_the_wake_word_is_ignored(
         await s.settle()
     assert not s.sim.state.in_call
     assert [r.last_user_text for r in server.requests][:1] == ["end the call."]
+
+
+async def test_an_answer_to_the_robots_question_needs_no_wake_word(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    server.push(TextReply("Which room do you mean?"),
+                ToolCallReply((ScriptedCall("navigate_to", {"target": "bedroom"}),)), TextReply("I am there."))
+    async with voice_session(fakes, backend, speed=2.0, sim_speed=10.0) as s:
+        transcriber.text = "Hey Jarvis, go to the other room."
+        await s.say(wake_command())
+        await s.log.wait_for(VoiceTurnFinished)
+        await s.settle()
+        transcriber.text = "The bedroom."
+        await s.say(babble(0.8), gap_s=0.8)  # no wake word: it answers the question
+        second = await s.log.wait_for(VoiceTurnStarted, lambda e: e.turn == 2)
+        await s.log.wait_for(VoiceTurnFinished, lambda e: e.turn == 2, timeout=60)
+        await s.settle()
+        transcriber.text = "And the kitchen after that."
+        await s.say(babble(0.8), gap_s=2.0)  # the robot made a statement: no follow-up now
+        ignored = await s.log.wait_for(UtteranceIgnored, lambda e: e.reason != "own_voice")
+        await s.settle()
+    assert second.follow_up and second.text == "The bedroom."
+    assert s.sim.state.nearest_place == "bedroom"
+    assert ignored.reason == "no_wake_word" and len(server.requests) == 3
+    # whatever of the robot's own answers came back as echo was recognised as its own voice
+    assert {e.reason for e in s.log.of(UtteranceIgnored)} <= {"own_voice", "no_wake_word"}
+
+
+async def test_referenced_sink_places_playback_where_it_will_sound() -> None:
+    from robovoice.audio.wav import MemorySink
+    from robovoice.voice.echo import PlaybackReference
+    from robovoice.voice.playback import ReferencedSink
+
+    now = [100.0]
+    reference = PlaybackReference()
+    sink = ReferencedSink(MemorySink(), reference, output_latency_s=0.05, clock=lambda: now[0])
+    half = tone(0.5)
+    await sink.write(half)
+    await sink.write(half)  # queued behind the first
+    assert reference.end_time == pytest.approx(101.05)
+    assert reference.playing(100.06, 100.1) and not reference.playing(100.0, 100.04)
+    now[0] = 100.3
+    sink.stop()  # barge-in: nothing more sounds after now
+    assert not reference.playing(100.31, 101.1) and reference.playing(100.1, 100.29)

@@ -216,6 +216,7 @@ _ROUTES: list[tuple[tuple[str, ...], str, dict[str, Any]]] = [
     (("anna",), "start_video_call", {"contact": "Anna"}),
     (("call",), "end_video_call", {}),  # "end the call" (speech-to-text also hears "and the call")
     (("kitchen",), "navigate_to", {"target": "kitchen"}),
+    (("front", "door"), "navigate_to", {"target": "front door"}),
     (("bedroom",), "navigate_to", {"target": "bedroom"}),
     (("battery",), "get_battery_state", {}),
 ]
@@ -228,7 +229,9 @@ def keyword_router(request: Any) -> Any:
 
     messages = request.messages
     if messages and messages[-1].get("role") == "tool":
-        return TextReply(f"Done: {messages[-2]['tool_calls'][0]['function']['name'].replace('_', ' ')}.")
+        name = messages[-2]["tool_calls"][0]["function"]["name"].replace("_", " ")
+        figure = re.search(r"\d+(?:\.\d+)?", str(messages[-1].get("content", "")))
+        return TextReply(f"Done: {name}" + (f", {figure.group(0)}." if figure and "battery" in name else "."))
     words = re.findall(r"[a-z]+", request.last_user_text.lower())
     for keys, tool, args in _ROUTES:
         if all(k in words for k in keys):
