@@ -23,7 +23,6 @@ import importlib.util
 import json
 import logging
 import os
-import re
 import threading
 import time
 from collections.abc import AsyncIterator, Callable, Iterator, Sequence
@@ -92,21 +91,6 @@ class _Turn:
     stats: TurnStats = field(default_factory=TurnStats)
 
 
-# A request that joins several actions ("go to the living room and turn on the projector").
-_COMPOUND_REQUEST = re.compile(r"\b(and|then|also|after that)\b", re.IGNORECASE)
-COMPOUND_CALLS = 3
-
-
-def call_budget(messages: Sequence[ChatMessage], single: int) -> int:
-    """How many tool calls this model step may make: `single`, or up to `COMPOUND_CALLS` in all
-    for a compound request, minus the calls already made for it (at least one per step)."""
-    last_user = max((i for i, m in enumerate(messages) if m.role == "user"), default=-1)
-    if last_user < 0 or not _COMPOUND_REQUEST.search(messages[last_user].text):
-        return single
-    made = sum(len(m.tool_calls) for m in messages[last_user + 1:])
-    return max(single, COMPOUND_CALLS - made, 1)
-
-
 class LocalLlamaBackend:
     """The embedded llama.cpp model; cheap to construct, loads on `load()` or the first turn."""
 
@@ -124,7 +108,7 @@ class LocalLlamaBackend:
         temperature: float = 0.0,
         # One call per model step by default: allowed more, the 1.5B model appends unrelated calls
         # (pose, camera, battery) to the one asked for, tripling turn latency (measured on the eval
-        # set); a compound request ("... and ...") may make up to COMPOUND_CALLS (see call_budget).
+        # set); the assistant loop hands it the results and another step for multi-step requests.
         max_calls_per_turn: int = 1,
         cache_dir: Path | None = None,
     ) -> None:
@@ -229,12 +213,10 @@ class LocalLlamaBackend:
                 reason = str(choice["finish_reason"])
         yield self._finished(turn, reason)
 
-    def _calls(
-        self, turn: _Turn, prompt: str, first: ToolSpec, tools: Sequence[ToolSpec], budget: int
-    ) -> Iterator[LLMEvent]:
+    def _calls(self, turn: _Turn, prompt: str, first: ToolSpec, tools: Sequence[ToolSpec]) -> Iterator[LLMEvent]:
         tool: ToolSpec | None = first
         index = 0
-        while tool is not None and index < budget:
+        while tool is not None and index < self.max_calls_per_turn:
             prompt += f"{fmt.FUNCTION_PREFIX}{tool.name}:\n"
             done = self._complete(
                 turn, prompt, stream=False, max_tokens=self.max_tokens, grammar=self._schema_grammar(tool)
@@ -243,7 +225,7 @@ class LocalLlamaBackend:
             turn.stats.completion_tokens += int(done["usage"]["completion_tokens"])
             yield tool_call_from_raw(f"call_{index}_{tool.name}_{int(time.time() * 1000)}", tool.name, arguments)
             index += 1
-            if index >= budget:
+            if index >= self.max_calls_per_turn:
                 break  # no need to ask the model whether another call follows
             prompt += arguments + "\n"
             head = self._complete(
@@ -269,7 +251,7 @@ class LocalLlamaBackend:
         if decided.tool is None:  # "message" (or, never under the grammar, nothing)
             yield from self._stream_text(turn, prompt + fmt.MESSAGE_HEAD + "\n")
         else:
-            yield from self._calls(turn, prompt, decided.tool, tools, call_budget(messages, self.max_calls_per_turn))
+            yield from self._calls(turn, prompt, decided.tool, tools)
 
     def _job(
         self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
