@@ -68,7 +68,8 @@ class VoiceFrontEnd:
         extra: dict[str, Any] = {
             "wake_words": sum(isinstance(e, WakeWordHeard) for e in heard),
             "transcripts": transcripts,
-            "ignored": [e.reason for e in heard if isinstance(e, UtteranceIgnored)],
+            "ignored": [f"{e.reason}: {e.text}" if e.text else e.reason
+                        for e in heard if isinstance(e, UtteranceIgnored)],
             "stops": pipeline.stats.stops,
         }
         results = pipeline.results
