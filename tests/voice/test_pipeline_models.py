@@ -4,11 +4,19 @@ keywords (so the transcript must be right), or the embedded local model in one t
 
 from __future__ import annotations
 
+import io
+import json
+import wave
+from pathlib import Path
+
 import pytest
-from voice_kit import clip, keyword_router, voice_session, wait_until
+from voice_kit import TEST_AUDIO, clip, keyword_router, voice_session, wait_until
 
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, silence
-from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, Pacing, TextReply
+from robovoice.audio.wav import read_wav
+from robovoice.llm.base import Deadlines
+from robovoice.llm.failover import FALLBACK_MESSAGE
+from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, Pacing, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.voice.config import EchoConfig, VoiceConfig
 from robovoice.voice.events import (
@@ -183,3 +191,45 @@ async def test_wake_word_then_command_with_the_local_model(voice_models: VoiceMo
         await local.aclose()
     assert done.result is not None and "set_projector_power" in [c.name for c in done.result.calls]
     assert s.log.of(SentenceSpoken), "the model's answer was spoken"
+
+
+async def test_fallback_is_spoken_when_the_backend_is_dead(voice_models: VoiceModels, unused_tcp_port: int,
+                                                           tmp_path: Path) -> None:
+    dead = OpenAICompatBackend(f"http://127.0.0.1:{unused_tcp_port}/v1", "nobody",
+                               deadlines=Deadlines(connect_s=1.0, first_token_s=2.0))
+    try:
+        async with voice_session(voice_models, dead, output_dir=tmp_path) as s:
+            await s.say(clip("audio/wake_piper_projector"))
+            done = await s.log.wait_for(VoiceTurnFinished, timeout=60)
+            await s.settle()
+    finally:
+        await dead.aclose()
+    assert done.result is not None and done.result.fell_back and not s.sim.state.projector_on
+    assert [e.text for e in s.log.of(SentenceSpoken)] == [FALLBACK_MESSAGE]
+    answer = read_wav(tmp_path / "turn-01.wav")
+    assert answer.duration_s > 2.0, "the fallback sentence was synthesised and played"
+
+
+async def test_audio_native_backend_hears_the_utterance_itself(voice_models: VoiceModels,
+                                                               server: FakeOpenAIServer) -> None:
+    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)), TextReply("Done."))
+    omni = OpenAICompatBackend(server.base_url, server.model, accepts_audio=True)
+    no_stt = VoiceModels(wake=voice_models.wake, vad=voice_models.vad, stt=None, tts=voice_models.tts,
+                         playback_wake=voice_models.playback_wake)
+    spec = next(c for c in json.loads((TEST_AUDIO / "clips.json").read_text()) if c["id"] == "wake_piper_projector")
+    try:
+        async with voice_session(no_stt, omni) as s:
+            await s.say(clip("audio/wake_piper_projector"))
+            started = await s.log.wait_for(VoiceTurnStarted, timeout=30)
+            await s.log.wait_for(VoiceTurnFinished, timeout=60)
+            await s.settle()
+            assert s.sim.state.projector_on
+    finally:
+        await omni.aclose()
+    assert started.mode == "audio" and not s.log.of(TranscriptReady)
+    fmt, data = server.requests[0].audio_inputs()[0]
+    with wave.open(io.BytesIO(data)) as wf:
+        assert (fmt, wf.getnchannels(), wf.getsampwidth(), wf.getframerate()) == ("wav", 1, 2, 16000)
+        seconds = wf.getnframes() / wf.getframerate()
+    speech = spec["speech_end_s"] - spec["speech_start_s"]
+    assert speech - 0.1 <= seconds <= speech + 0.3 + 0.2 + 0.2  # + pre-roll, post-roll, VAD frame rounding
