@@ -45,6 +45,12 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     audio.add_argument("--repeats", type=int, default=3)
     audio.set_defaults(run=_audio)
 
+    voice = sub.add_parser("voice", help="end of speech → first audio out, all-local, per stage; "
+                                         "or the pipeline's own overhead with instant model fakes")
+    voice.add_argument("which", nargs="?", choices=["local", "overhead"], default="local")
+    voice.add_argument("--turns", type=int, help="turns to measure (default 8 local, 30 overhead)")
+    voice.set_defaults(run=_voice)
+
 
 def _machine() -> dict[str, Any]:
     model = ""
@@ -98,3 +104,11 @@ def _audio(args: argparse.Namespace) -> int:
     from robovoice.audio.bench import run_all
 
     return _print(run_all(args.fixtures, negative_wav=args.negative_wav, whisper=True, repeats=args.repeats))
+
+
+def _voice(args: argparse.Namespace) -> int:
+    from robovoice.voice.bench import bench_local, bench_overhead
+
+    if args.which == "overhead":
+        return _print(asyncio.run(bench_overhead(args.turns or 30)))
+    return _print(asyncio.run(bench_local(args.turns or 8)))
