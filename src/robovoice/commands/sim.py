@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import signal
 from typing import Any
 
+from robovoice.commands.signals import CancelOnSignals
 from robovoice.middleware import open_middleware
 from robovoice.sim import NODE_NAMES, SETUP_NAMES, SimRobot, run_sim_forever
 
@@ -43,33 +43,14 @@ def run(args: argparse.Namespace) -> int:
 
 
 async def _serve(uri: str, nodes: list[str] | None, speed: float, setup: str) -> int:
-    loop = asyncio.get_running_loop()
-    main = asyncio.current_task()
-    assert main is not None
-    stopping = False
-
-    def stop() -> None:
-        nonlocal stopping
-        if not stopping:
-            stopping = True
-            main.cancel()
-
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(signum, stop)
-
     def ready(robot: SimRobot) -> None:
         print(f"robovoice sim: ready: {', '.join(robot.node_names)} on {uri}", flush=True)
 
     middleware = open_middleware(uri)
-    try:
-        await middleware.start()
-        await run_sim_forever(middleware, speed=speed, nodes=nodes, setup=setup, on_ready=ready)
-    except asyncio.CancelledError:
-        if not stopping:
-            raise
-        main.uncancel()
-    finally:
-        await middleware.close()
-        for signum in (signal.SIGINT, signal.SIGTERM):
-            loop.remove_signal_handler(signum)
+    with CancelOnSignals():
+        try:
+            await middleware.start()
+            await run_sim_forever(middleware, speed=speed, nodes=nodes, setup=setup, on_ready=ready)
+        finally:
+            await middleware.close()
     return 0

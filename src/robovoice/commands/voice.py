@@ -13,7 +13,6 @@ from __future__ import annotations
 import argparse
 import asyncio
 import json
-import signal
 import sys
 import time
 from pathlib import Path
@@ -29,6 +28,7 @@ from robovoice.commands.common import (
     robot_target_from_args,
     warm_up,
 )
+from robovoice.commands.signals import CancelOnSignals
 from robovoice.errors import ConfigError
 
 _STAGES = (("transcript", "transcript"), ("first_token", "first token"), ("tool_call", "tool call"),
@@ -294,29 +294,12 @@ async def _assist_mic(args: argparse.Namespace, models: Any, backend: Any, link:
         options["remote_speaking"] = lambda: sim.state.remote_speaking
     pipeline = VoicePipeline(models, backend, link.tools, source=mic, sink=speaker, reference=reference,
                              observer=printer, output_dir=args.output_dir, sink_format=PIPER_FORMAT, **options)
-    loop = asyncio.get_running_loop()
-    main = asyncio.current_task()
-    assert main is not None
-    stopping = False
-
-    def stop() -> None:
-        nonlocal stopping
-        if not stopping:
-            stopping = True
-            main.cancel()
-
-    for signum in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(signum, stop)
     printer.line("listening: say \"Hey Jarvis, ...\" (Ctrl-C to end)")
-    try:
-        await pipeline.run(finish_timeout_s=10.0)
-    except asyncio.CancelledError:
-        if not stopping:
-            raise
-        main.uncancel()
+    with CancelOnSignals() as stop:
+        try:
+            await pipeline.run(finish_timeout_s=10.0)
+        finally:
+            await mic.aclose()
+            await speaker.aclose()
+    if stop.signalled:
         printer.line("stopped")
-    finally:
-        for signum in (signal.SIGINT, signal.SIGTERM):
-            loop.remove_signal_handler(signum)
-        await mic.aclose()
-        await speaker.aclose()
