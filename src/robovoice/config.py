@@ -101,25 +101,22 @@ def load_config(path: Path | None) -> Config:
 
 @dataclass(frozen=True, slots=True)
 class Environment:
-    """The environment variables robovoice reads, read once."""
+    """The folders robovoice keeps files in, from the environment, read once."""
 
     cache_dir: Path
     state_dir: Path
-    variables: Mapping[str, str]
-
-    def secret(self, name: str) -> str:
-        value = self.variables.get(name)
-        if not value:
-            raise ConfigError(f"environment variable {name} is not set (it should hold the API key)")
-        return value
 
 
 def environment(env: Mapping[str, str] | None = None) -> Environment:
+    """``$ROBOVOICE_CACHE_DIR``, else ``$XDG_CACHE_HOME/robovoice``, else ``~/.cache/robovoice``;
+    likewise ``$ROBOVOICE_STATE_DIR`` / ``$XDG_STATE_HOME`` / ``~/.local/state`` for the state."""
     env = os.environ if env is None else env
     home = Path(env.get("HOME", str(Path.home())))
-    cache = env.get("ROBOVOICE_CACHE_DIR") or str(Path(env.get("XDG_CACHE_HOME") or home / ".cache") / "robovoice")
-    state = env.get("ROBOVOICE_STATE_DIR") or str(
-        Path(env.get("XDG_STATE_HOME") or home / ".local" / "state") / "robovoice")
-    return Environment(Path(cache), Path(state), dict(env))
 
+    def folder(own: str, xdg: str, fallback: Path) -> Path:
+        if env.get(own):
+            return Path(env[own]).expanduser()
+        return Path(env[xdg]).expanduser() / "robovoice" if env.get(xdg) else fallback / "robovoice"
 
+    return Environment(folder("ROBOVOICE_CACHE_DIR", "XDG_CACHE_HOME", home / ".cache"),
+                       folder("ROBOVOICE_STATE_DIR", "XDG_STATE_HOME", home / ".local" / "state"))

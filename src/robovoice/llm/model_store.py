@@ -20,6 +20,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+from robovoice.config import environment
 from robovoice.errors import ConfigError, MissingDependencyError
 
 log = logging.getLogger(__name__)
@@ -45,16 +46,9 @@ DEFAULT_MODEL = PinnedModel(MODEL_FILENAME, MODEL_SIZE, MODEL_SHA256)
 
 
 def default_cache_dir(environ: Mapping[str, str] = os.environ) -> Path:
-    """``$ROBOVOICE_CACHE_DIR``, else ``$XDG_CACHE_HOME/robovoice``, else ``~/.cache/robovoice``.
-
-    The one place this package reads the environment for the cache; pass
-    ``environ`` explicitly from config code and tests.
-    """
-    if environ.get("ROBOVOICE_CACHE_DIR"):
-        return Path(environ["ROBOVOICE_CACHE_DIR"]).expanduser()
-    if environ.get("XDG_CACHE_HOME"):
-        return Path(environ["XDG_CACHE_HOME"]).expanduser() / "robovoice"
-    return Path.home() / ".cache" / "robovoice"
+    """``$ROBOVOICE_CACHE_DIR``, else ``$XDG_CACHE_HOME/robovoice``, else ``~/.cache/robovoice``
+    (resolved by `robovoice.config.environment`, the one place the environment is read)."""
+    return environment(environ).cache_dir
 
 
 def find_part_files(modules: Sequence[str] = PART_MODULES) -> list[Path]:
