@@ -12,6 +12,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from robovoice.assistant.metrics import percentile
 from robovoice.llm.base import ChatMessage, Deadlines, TextDelta, ToolCallRequested, ToolSpec
 from robovoice.llm.local import LocalLlamaBackend
 
@@ -77,13 +78,6 @@ class LocalBenchResult:
     prompt_eval_cold_ms: float
     prompt_eval_warm_median_ms: float
     prefix_eval_saving: float  # 1 - warm/cold prompt-evaluation time
-
-
-def percentile(values: Sequence[float], q: float) -> float:
-    """Nearest-rank percentile (q in 0..100)."""
-    ordered = sorted(values)
-    rank = max(1, min(len(ordered), round(q / 100 * len(ordered) + 0.5)))
-    return ordered[rank - 1]
 
 
 async def _turn(backend: LocalLlamaBackend, system_prompt: str, tools: Sequence[ToolSpec], text: str) -> BenchTurn:
