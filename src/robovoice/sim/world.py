@@ -143,10 +143,7 @@ def route(start: Point, goal: Point) -> list[Point]:
     same_spur = math.isclose(start.x, goal.x, abs_tol=1e-6) and (
         (start.y - HALLWAY_Y) * (goal.y - HALLWAY_Y) > 0
     )
-    if same_spur:
-        points = [start, goal]
-    else:
-        points = [start, Point(start.x, HALLWAY_Y), Point(goal.x, HALLWAY_Y), goal]
+    points = [start, goal] if same_spur else [start, Point(start.x, HALLWAY_Y), Point(goal.x, HALLWAY_Y), goal]
     deduplicated = [points[0]]
     for point in points[1:]:
         if point.distance_to(deduplicated[-1]) > 1e-9:
