@@ -17,10 +17,9 @@ import numpy as np
 
 from robovoice.assistant.connect import RobotTarget, open_robot
 from robovoice.assistant.robot_tools import RobotTools
-from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer
-from robovoice.audio.format import MODEL_FORMAT, AudioChunk, Samples, as_float32, float32_to_int16
+from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer, ToneWakeDetector
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, float32_to_int16
 from robovoice.audio.stt import Transcript
-from robovoice.audio.wake import WAKE_FRAME_SAMPLES
 from robovoice.audio.wav import read_wav
 from robovoice.llm.base import LLMBackend
 from robovoice.sim import SimRobot
@@ -52,27 +51,6 @@ def clip_text(clip_id: str) -> str:
 
 
 # --- model fakes keyed to synthetic audio ------------------------------------------------------
-
-
-class ToneWakeDetector:
-    """A wake word "model" that hears a 1 kHz tone: score 0.99 on frames where the tone
-    carries most of the energy, else 0. Test audio marks the wake phrase with the tone."""
-
-    frame_samples: int = WAKE_FRAME_SAMPLES
-
-    def __init__(self) -> None:
-        t = np.arange(WAKE_FRAME_SAMPLES) / RATE
-        self._c = np.cos(2 * np.pi * WAKE_TONE_HZ * t)
-        self._s = np.sin(2 * np.pi * WAKE_TONE_HZ * t)
-
-    def process(self, frame: Samples) -> float:
-        x = as_float32(frame).astype(np.float64)
-        total = float(np.sum(x * x)) + 1e-12
-        tone = (float(np.dot(x, self._c)) ** 2 + float(np.dot(x, self._s)) ** 2) * 2 / len(x)
-        return 0.99 if total > 1e-4 and tone / total > 0.5 else 0.0
-
-    def reset(self) -> None:
-        return None
 
 
 class SettableTranscriber:

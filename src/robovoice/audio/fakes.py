@@ -38,6 +38,27 @@ class ScriptedWakeDetector:
         self.resets += 1
 
 
+class ToneWakeDetector:
+    """A wake word "model" that hears a tone (1 kHz by default): score 0.99 on frames where the
+    tone carries most of the energy, else 0. Synthetic test audio marks the wake phrase with it."""
+
+    frame_samples: int = WAKE_FRAME_SAMPLES
+
+    def __init__(self, tone_hz: float = 1000.0, rate: int = 16_000) -> None:
+        t = np.arange(WAKE_FRAME_SAMPLES) / rate
+        self._c = np.cos(2 * np.pi * tone_hz * t)
+        self._s = np.sin(2 * np.pi * tone_hz * t)
+
+    def process(self, frame: Samples) -> float:
+        x = as_float32(frame).astype(np.float64)
+        total = float(np.sum(x * x)) + 1e-12
+        tone = (float(np.dot(x, self._c)) ** 2 + float(np.dot(x, self._s)) ** 2) * 2 / len(x)
+        return 0.99 if total > 1e-4 and tone / total > 0.5 else 0.0
+
+    def reset(self) -> None:
+        return None
+
+
 class EnergyVAD:
     """A model-free VAD: speech probability from the frame's RMS level, a logistic curve
     centred on `threshold_dbfs` (6 dB above it -> ~0.95). Good enough for clean test audio."""

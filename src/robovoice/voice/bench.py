@@ -33,11 +33,10 @@ import numpy as np
 
 from robovoice.assistant.metrics import percentile
 from robovoice.assistant.robot_tools import ProgressCallback, RobotTools, ToolOutcome
-from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer
-from robovoice.audio.format import MODEL_FORMAT, AudioChunk, Samples, as_float32, concat, convert, float32_to_int16
+from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer, ToneWakeDetector
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, float32_to_int16
 from robovoice.audio.format import silence as make_silence
 from robovoice.audio.stt import Transcript
-from robovoice.audio.wake import WAKE_FRAME_SAMPLES
 from robovoice.llm.base import ChatMessage, Finished, LLMEvent, TextDelta, ToolSpec
 from robovoice.voice.events import PipelineEvent, VoiceTurnFinished
 from robovoice.voice.models import VoiceModels
@@ -88,25 +87,6 @@ def machine() -> dict[str, Any]:
 
 
 # --- instant fakes for the overhead measurement -----------------------------------------------------
-
-
-class _ToneWake:
-    """Wake word "model": a 1 kHz tone marks the wake phrase (no inference cost)."""
-
-    frame_samples: int = WAKE_FRAME_SAMPLES
-
-    def __init__(self) -> None:
-        t = np.arange(WAKE_FRAME_SAMPLES) / MODEL_FORMAT.rate
-        self._c, self._s = np.cos(2 * np.pi * 1000 * t), np.sin(2 * np.pi * 1000 * t)
-
-    def process(self, frame: Samples) -> float:
-        x = as_float32(frame).astype(np.float64)
-        total = float(np.sum(x * x)) + 1e-12
-        tone = (float(np.dot(x, self._c)) ** 2 + float(np.dot(x, self._s)) ** 2) * 2 / len(x)
-        return 0.99 if total > 1e-4 and tone / total > 0.5 else 0.0
-
-    def reset(self) -> None:
-        return None
 
 
 class _InstantStt:
@@ -165,8 +145,8 @@ async def _run_turns(pipeline: VoicePipeline, room: SimulatedRoom, commands: Seq
 
 async def bench_overhead(turns: int = 30, *, speed: float = 4.0) -> dict[str, Any]:
     """End of speech -> first audio with instant models: the pipeline's own time per turn."""
-    models = VoiceModels(wake=_ToneWake(), vad=EnergyVAD(), stt=_InstantStt(), tts=ToneSynthesizer(0.01),
-                         playback_wake=_ToneWake())
+    models = VoiceModels(wake=ToneWakeDetector(), vad=EnergyVAD(), stt=_InstantStt(), tts=ToneSynthesizer(0.01),
+                         playback_wake=ToneWakeDetector())
     room = SimulatedRoom(speed=speed)
     finished: list[VoiceTurnFinished] = []
 
