@@ -1,6 +1,7 @@
 """Configuration: one TOML file, read once at the edge and passed down frozen.
 
-This module and `environment()` are the only places that read environment variables.
+Folders come from the environment through `environment()`; secrets from files through
+`read_secret_file()` (an API key may also come from an environment variable the config names).
 
     # robovoice.toml
     [robot]
@@ -20,6 +21,7 @@ This module and `environment()` are the only places that read environment variab
 
 from __future__ import annotations
 
+import logging
 import os
 import tomllib
 from collections.abc import Mapping
@@ -30,6 +32,8 @@ from typing import Any
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
 from robovoice.errors import ConfigError
+
+log = logging.getLogger(__name__)
 
 
 class _Frozen(BaseModel):
@@ -97,6 +101,22 @@ def load_config(path: Path | None) -> Config:
     except ValidationError as exc:
         problems = "; ".join(f"{'.'.join(str(p) for p in e['loc'])}: {e['msg']}" for e in exc.errors())
         raise ConfigError(f"{path}: {problems}") from exc
+
+
+def read_secret_file(path: Path, what: str) -> str:
+    """The secret (a bearer token, an API key) held in `path`, whitespace stripped.
+    Unreadable or empty → `ConfigError` naming `what` and the file; a file others can read
+    is allowed but logged, since secrets belong in files only their owner reads."""
+    path = path.expanduser()
+    try:
+        value = path.read_text(encoding="utf-8").strip()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"cannot read the {what} file {path}: {exc}") from None
+    if not value:
+        raise ConfigError(f"the {what} file {path} is empty")
+    if path.stat().st_mode & 0o077:
+        log.warning("the %s file %s can be read by other users; chmod 600 it", what, path)
+    return value
 
 
 @dataclass(frozen=True, slots=True)

@@ -22,6 +22,7 @@ from mcp.client.stdio import StdioServerParameters
 from mcp.client.streamable_http import streamable_http_client
 
 from robovoice.assistant.robot_tools import RobotTools
+from robovoice.config import read_secret_file
 from robovoice.errors import ConfigError, RobotUnreachableError
 
 log = logging.getLogger(__name__)
@@ -64,16 +65,6 @@ def _root_cause(exc: BaseException) -> str:
     while exc.__cause__ is not None:
         exc = exc.__cause__
     return f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
-
-
-def _read_token(path: Path) -> str:
-    try:
-        token = path.expanduser().read_text(encoding="utf-8").strip()
-    except OSError as exc:
-        raise ConfigError(f"cannot read token file {path}: {exc.strerror}") from exc
-    if not token:
-        raise ConfigError(f"token file {path} is empty")
-    return token
 
 
 @asynccontextmanager
@@ -120,7 +111,7 @@ async def _remote_client(target: RobotTarget, tools: RobotTools) -> AsyncIterato
         return
     if not target.server.startswith(("http://", "https://")):
         raise ConfigError(f"--server must be an http(s):// URL or 'stdio:<command>', got {target.server!r}")
-    headers = {"Authorization": f"Bearer {_read_token(target.token_file)}"} if target.token_file else {}
+    headers = {"Authorization": f"Bearer {read_secret_file(target.token_file, 'token')}"} if target.token_file else {}
     http = httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(10.0, read=330.0))
     async with http, Client(streamable_http_client(target.server, http_client=http),
                             message_handler=tools.handle_message, cache=None, mode="legacy") as client:

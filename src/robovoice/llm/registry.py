@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
+from robovoice.config import read_secret_file
 from robovoice.errors import ConfigError
 from robovoice.llm.base import Deadlines, LLMBackend
 from robovoice.llm.failover import Backoff, FailoverBackend
@@ -58,13 +59,7 @@ def api_key_from(environ: Mapping[str, str], *, env_var: str | None = None, key_
             raise ConfigError(f"environment variable {env_var} (the LLM API key) is not set")
         return value
     if key_file:
-        try:
-            value = key_file.expanduser().read_text(encoding="utf-8").strip()
-        except OSError as exc:
-            raise ConfigError(f"cannot read the LLM API key file {key_file}: {exc}") from exc
-        if not value:
-            raise ConfigError(f"the LLM API key file {key_file} is empty")
-        return value
+        return read_secret_file(key_file, "LLM API key")
     return None
 
 

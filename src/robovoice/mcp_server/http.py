@@ -34,6 +34,7 @@ from starlette.responses import PlainTextResponse
 from starlette.routing import Route
 from starlette.types import ASGIApp, Receive, Scope, Send
 
+from robovoice.config import read_secret_file
 from robovoice.errors import ConfigError
 from robovoice.mcp_server._groups import owned_tasks
 from robovoice.mcp_server.server import RobotToolServer
@@ -67,14 +68,9 @@ def check_bind(host: str, token: str | None) -> None:
 
 def read_token_file(path: Path) -> str:
     """The bearer token in `path` (surrounding whitespace removed); `ConfigError` if unusable."""
-    try:
-        token = path.read_text(encoding="utf-8").strip()
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"cannot read the token file {path}: {exc}") from None
+    token = read_secret_file(path, "token")
     if len(token) < 16 or any(c.isspace() for c in token):
         raise ConfigError(f"the token file {path} must hold one token of at least 16 characters, no spaces")
-    if path.stat().st_mode & 0o077:
-        log.warning("the token file %s can be read by other users; chmod 600 it", path)
     return token
 
 
