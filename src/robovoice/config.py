@@ -27,7 +27,7 @@ import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
 
@@ -78,6 +78,10 @@ class VoiceConfig(_Frozen):
     end_of_turn_silence_ms: int = Field(default=500, ge=100)
     max_utterance_s: float = Field(default=15.0, gt=0)
     follow_up_s: float = Field(default=6.0, ge=0)
+    # speech-to-text: Whisper tiny.en (takes vocabulary hints), Moonshine base-en, or none
+    # (only with an audio-capable model)
+    stt: Literal["whisper", "moonshine", "none"] = "whisper"
+    vocabulary: tuple[str, ...] = ()  # extra words for speech-to-text (names, places)
 
 
 class Config(_Frozen):

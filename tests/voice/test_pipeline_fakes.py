@@ -29,6 +29,7 @@ from robovoice.voice.events import (
     WakeWordRejected,
 )
 from robovoice.voice.models import VoiceModels
+from robovoice.voice.vocabulary import STOP_HINT
 
 pytestmark = pytest.mark.timeout(90)
 
@@ -47,6 +48,9 @@ async def test_wake_word_then_command_calls_the_tool_and_speaks(
         assert s.sim.state.projector_on
     assert [e.text for e in s.log.of(TranscriptReady)] == ["turn on the projector."]
     assert server.requests[0].last_user_text == "turn on the projector."
+    # speech-to-text was told the words to expect: the wake phrase and the robot's tools
+    assert transcriber.hints and all(h.startswith("Hey Jarvis. ") for h in transcriber.hints)
+    assert "set projector power" in transcriber.hints[-1] and "stop robot" in transcriber.hints[-1]
     assert not done.cancelled and done.result is not None
     assert [c.name for c in done.result.calls] == ["set_projector_power"]
     spoken = s.log.of(SentenceSpoken)
@@ -112,6 +116,7 @@ async def test_spoken_stop_stops_a_drive_while_the_model_is_busy(
     assert heard.cancelled_turn == finished.turn and finished.cancelled
     assert stopped.latency_ms < 3000  # end of "stop" -> stop tool answered, the model still silent
     assert [e.text for e in s.log.of(SentenceSpoken) if e.kind == "stop"] == ["Stopped."]
+    assert transcriber.hints[-1] == STOP_HINT  # the stop check listens for stop words only
 
 
 async def test_stop_cancels_the_drive_the_voice_started(

@@ -59,9 +59,11 @@ class SettableTranscriber:
     def __init__(self, text: str = "") -> None:
         self.text = text
         self.calls = 0
+        self.hints: list[str] = []
 
-    def transcribe(self, audio: AudioChunk) -> Transcript:
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
         self.calls += 1
+        self.hints.append(hint)
         return Transcript(self.text, audio.duration_s)
 
 

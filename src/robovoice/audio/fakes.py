@@ -84,9 +84,11 @@ class ScriptedTranscriber:
     def __init__(self, texts: Iterable[str]) -> None:
         self._texts = iter(list(texts))
         self.calls: list[AudioChunk] = []
+        self.hints: list[str] = []
 
-    def transcribe(self, audio: AudioChunk) -> Transcript:
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
         self.calls.append(audio)
+        self.hints.append(hint)
         try:
             text = next(self._texts)
         except StopIteration:

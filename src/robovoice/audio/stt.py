@@ -44,9 +44,11 @@ class Transcript:
 
 @runtime_checkable
 class Transcriber(Protocol):
-    """Blocking speech-to-text of one utterance (any format; converted to 16 kHz mono)."""
+    """Blocking speech-to-text of one utterance (any format; converted to 16 kHz mono).
+    `hint`: words the speaker is likely to use (see `robovoice.voice.vocabulary`); a model
+    that cannot use one ignores it."""
 
-    def transcribe(self, audio: AudioChunk) -> Transcript: ...
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript: ...
 
 
 def strip_wake_phrase(text: str, phrase: str = "hey jarvis") -> str:
@@ -171,7 +173,8 @@ class MoonshineTranscriber:
         with self._lock:
             self._run(rng.normal(0.0, 0.01, MODEL_FORMAT.rate).astype(np.float32), max_tokens=2)
 
-    def transcribe(self, audio: AudioChunk) -> Transcript:
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
+        """`hint` is ignored: Moonshine has no prompt input."""
         started = time.perf_counter()
         samples = _to_model_input(audio)
         duration = samples.shape[0] / MODEL_FORMAT.rate
@@ -262,21 +265,23 @@ class WhisperTranscriber:
         if warm_up:
             self._run(np.zeros(MODEL_FORMAT.rate, dtype=np.float32))
 
-    def transcribe(self, audio: AudioChunk) -> Transcript:
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
+        """`hint` becomes Whisper's ``initial_prompt``: the text it takes as said just before."""
         started = time.perf_counter()
         samples = _to_model_input(audio)
-        text = self._run(samples)
+        text = self._run(samples, hint)
         return Transcript(
             text=text,
             duration_s=samples.shape[0] / MODEL_FORMAT.rate,
             inference_s=time.perf_counter() - started,
         )
 
-    def _run(self, samples: np.ndarray) -> str:
+    def _run(self, samples: np.ndarray, hint: str = "") -> str:
         with self._lock:
             segments, _info = self._model.transcribe(
                 samples,
                 language=self._language,
+                initial_prompt=hint or None,
                 beam_size=1,
                 temperature=0.0,  # no re-decoding at higher temperatures: predictable latency
                 without_timestamps=True,

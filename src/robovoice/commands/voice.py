@@ -59,8 +59,9 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
     source.add_argument("--mic", action="store_true", help="listen on the default microphone (needs PortAudio)")
     source.add_argument("--input", nargs="+", type=Path, metavar="FILE.wav", help="WAV files to process")
     assist.add_argument("--output-dir", type=Path, metavar="DIR", help="write the spoken answers here")
-    assist.add_argument("--stt", choices=["moonshine", "whisper", "none"], default="moonshine",
-                        help="speech-to-text model (none: only with an audio-capable --llm)")
+    assist.add_argument("--stt", choices=["whisper", "moonshine", "none"], default=None,
+                        help="speech-to-text model (default: [voice] stt of the config, whisper; "
+                             "none: only with an audio-capable --llm)")
     assist.set_defaults(run=run_assist_command)
 
 
@@ -154,7 +155,7 @@ async def _demo(args: argparse.Namespace) -> int:
     printer.line("loading the voice models, the robot and the language model ...")
     config = config_from_args(args)
     backend = backend_from_args(args, config)
-    models = await asyncio.to_thread(load_voice_models)
+    models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=config.voice.stt)
 
     def on_step(event: StepStarted | StepChecked) -> None:
         step = event.step
@@ -217,7 +218,8 @@ async def _assist(args: argparse.Namespace) -> int:
     printer = TranscriptPrinter()
     config = config_from_args(args)
     backend = backend_from_args(args, config)
-    if args.stt == "none" and not backend.accepts_audio:
+    stt = args.stt or config.voice.stt
+    if stt == "none" and not backend.accepts_audio:
         raise ConfigError("--stt none needs an audio-capable model (--llm URL --audio-input)")
     if args.input:
         missing = [str(p) for p in args.input if not p.is_file()]
@@ -225,7 +227,7 @@ async def _assist(args: argparse.Namespace) -> int:
             raise ConfigError(f"no such WAV file: {', '.join(missing)}")
     target = robot_target_from_args(args, config)
     printer.line("loading the voice models ...")
-    models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=args.stt)
+    models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=stt)
     try:
         async with open_robot(target) as link:
             await warm_up(backend, await link.tools.specs())

@@ -90,7 +90,7 @@ def machine() -> dict[str, Any]:
 
 
 class _InstantStt:
-    def transcribe(self, audio: AudioChunk) -> Transcript:
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
         return Transcript("Hey Jarvis, say something.", audio.duration_s)
 
 

@@ -18,7 +18,8 @@ class TurnTakingConfig:
     command. `follow_up_s`: after the robot finished speaking, how long speech counts as an
     answer without the wake word (only when the robot asked a question, unless
     `follow_up_always`). `wake_slack_s`: a wake word this close to an utterance belongs to
-    it. `stop_max_s`: only utterances up to this long are checked for a spoken stop.
+    it. `stop_max_s`: only utterances up to this long are checked for a spoken stop (long
+    enough for a stop said over other people's talk, which the VAD hears as speech too).
     `playback_tail_s`: after playback ends its echo still counts as playback this long.
     """
 
@@ -26,7 +27,7 @@ class TurnTakingConfig:
     follow_up_s: float = 5.0
     follow_up_always: bool = False
     wake_slack_s: float = 0.6
-    stop_max_s: float = 2.5
+    stop_max_s: float = 4.0
     playback_tail_s: float = 0.3
 
     def __post_init__(self) -> None:
@@ -78,6 +79,7 @@ class VoiceConfig:
     turns: TurnTakingConfig = field(default_factory=TurnTakingConfig)
     echo: EchoConfig = field(default_factory=EchoConfig)
     speech: SpeechConfig = field(default_factory=SpeechConfig)
+    vocabulary: tuple[str, ...] = ()  # extra speech-to-text hints (`robovoice.voice.vocabulary`)
     stop_tool: str = "stop_robot"
     motion_tools: tuple[str, ...] = ("navigate_to", "return_to_dock")
     stop_timeout_s: float = 5.0
@@ -91,4 +93,5 @@ def from_settings(settings: VoiceSettings) -> VoiceConfig:
         endpointer=EndpointerConfig(end_silence_s=settings.end_of_turn_silence_ms / 1000.0,
                                     max_utterance_s=settings.max_utterance_s),
         turns=TurnTakingConfig(follow_up_s=settings.follow_up_s),
+        vocabulary=tuple(settings.vocabulary),
     )

@@ -90,5 +90,5 @@ async def open_audio_frontend(
     """Load the voice models (unless given) and yield the front end for audio cases."""
     settings = (config or Config()).voice
     if models is None:
-        models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model)
+        models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model, stt=settings.stt)
     yield VoiceFrontEnd(models, from_settings(settings), speed)

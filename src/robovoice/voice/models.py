@@ -27,12 +27,12 @@ class VoiceModels:
 
 
 def load_voice_models(
-    *, wake_model: str = "hey_jarvis", stt: str = "moonshine", stt_threads: int | None = None,
+    *, wake_model: str = "hey_jarvis", stt: str = "whisper", stt_threads: int | None = None,
     tts_threads: int | None = None,
 ) -> VoiceModels:
     """Load the shipped models: openWakeWord (twice: the microphone's and the playback's
-    detector), Silero VAD, Moonshine (or Whisper with ``stt="whisper"``, none with
-    ``stt="none"``) and Piper, four at a time."""
+    detector), Silero VAD, Whisper tiny.en (or Moonshine with ``stt="moonshine"``, none
+    with ``stt="none"``) and Piper, four at a time."""
     from robovoice.audio.stt import MoonshineTranscriber, WhisperTranscriber
     from robovoice.audio.tts import PiperSynthesizer
     from robovoice.audio.vad import SileroVAD

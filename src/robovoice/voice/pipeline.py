@@ -68,6 +68,7 @@ from robovoice.voice.speech import SpeechOutput
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.turns import Action, TurnTaking, Verdict
 from robovoice.voice.utterance import OwnWords, Transcribing, Transcription, strip_wake_words, trim_to_wake, wav_bytes
+from robovoice.voice.vocabulary import STOP_HINT, command_hint
 
 log = logging.getLogger(__name__)
 
@@ -161,6 +162,7 @@ class VoicePipeline:
         self._changed = asyncio.Event()
         self._own_words = OwnWords()
         self.stt = Transcribing(models.stt, self._stt_exec) if models.stt is not None else None
+        self.hint = command_hint(cfg.wake_phrase, [], cfg.vocabulary)  # see `refresh_hint`
         if self.audio_native is False and models.stt is None:
             raise ValueError("a text-only backend needs a speech-to-text model")
 
@@ -169,6 +171,7 @@ class VoicePipeline:
     async def run(self, *, finish_timeout_s: float = 120.0) -> None:
         """Listen until the source ends, then let the running turn finish (bounded)."""
         self.front.reset()
+        await self.refresh_hint()
         try:
             async with asyncio.TaskGroup() as group:
                 self._group = group
@@ -184,6 +187,15 @@ class VoicePipeline:
             self._group = None
             for executor in (self._front_exec, self._stt_exec, self._tts_exec):
                 await executor.aclose()
+
+    async def refresh_hint(self) -> None:
+        """Rebuild the speech-to-text hint from the robot's current tools (`vocabulary`)."""
+        try:
+            specs = await self.assistant.tools.specs()
+        except Exception as exc:  # a robot that cannot list its tools now still gets its commands heard
+            log.warning("speech-to-text hint not refreshed (listing the tools failed: %s)", exc)
+            return
+        self.hint = command_hint(self.config.wake_phrase, specs, self.config.vocabulary)
 
     def _idle(self) -> bool:
         return (
@@ -289,14 +301,16 @@ class VoicePipeline:
             return
         group = self._group
         self.stt.speculate(pause.onset, pause.at, trim_to_wake(pause.audio, self.turns.pending_wake),
-                           lambda coro: group.create_task(coro, name="voice-stt-speculative"))
+                           lambda coro: group.create_task(coro, name="voice-stt-speculative"),
+                           self.hint if addressed else STOP_HINT)
 
     async def _on_utterance(self, utt: HeardUtterance, received: float, compute_s: float) -> None:
         short = utt.duration_s <= self.config.turns.stop_max_s
         moving = short and not self.turns.addressed(utt.start, utt.end) and await self._moving()
         verdict = self.turns.classify(utt.start, utt.end, moving=moving)
         own_voice = utt.playback_share > 0.5 and not utt.near_end
-        speculation = self.stt.take(utt.start, utt.end) if self.stt is not None else None
+        hint = STOP_HINT if verdict.action is Action.STOP_CHECK else self.hint
+        speculation = self.stt.take(utt.start, utt.end, hint) if self.stt is not None else None
         if verdict.action is Action.COMMAND and (verdict.wake_at is not None or not own_voice):
             self._start_command(utt, verdict, received, compute_s, speculation)
         elif verdict.action is Action.STOP_CHECK:
@@ -352,10 +366,12 @@ class VoicePipeline:
                                                name=f"voice-turn-{turn.id}")
         self._active.add_done_callback(lambda _: self._changed.set())
 
-    async def _transcribe(self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None) -> str:
+    async def _transcribe(
+        self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None, hint: str
+    ) -> str:
         """The transcript: from the speculative run when it covers the utterance, else now."""
         assert self.stt is not None
-        text, took_ms = await speculation if speculation is not None else await self.stt.transcribe(audio)
+        text, took_ms = await speculation if speculation is not None else await self.stt.transcribe(audio, hint)
         metrics.stt_ms += took_ms
         metrics.mark("transcript", max(metrics.start, time.perf_counter()))
         return text
@@ -382,7 +398,7 @@ class VoicePipeline:
                     return
                 content = (AudioPart(wav_bytes(audio)),)
             else:
-                raw = await self._transcribe(audio, metrics, speculation)
+                raw = await self._transcribe(audio, metrics, speculation, self.hint)
                 text = strip_wake_words(raw, self.config.wake_phrase) if verdict.wake_at is not None else raw.strip()
                 await self._emit(TranscriptReady(text, metrics.stt_ms))
                 if not re.search(r"[A-Za-z0-9]", text):
@@ -402,6 +418,7 @@ class VoicePipeline:
             self.results.append(result)
             self.turns.turn_finished(asked_question=result.reply.rstrip().endswith("?"))
             turn.motion_calls.clear()
+            await self.refresh_hint()  # the tools may have changed during the turn
             await self.speech.idle(timeout=120.0)
         except asyncio.CancelledError:
             cancelled = True
@@ -424,7 +441,7 @@ class VoicePipeline:
         if self.stt is None:
             await self._ignore("no_stt_for_stop_check", utt)
             return
-        text = await self._transcribe(utt.audio, metrics, speculation)
+        text = await self._transcribe(utt.audio, metrics, speculation, STOP_HINT)
         if not is_stop_command(strip_wake_words(text, self.config.wake_phrase)):
             await self._ignore("not_a_stop", utt, text)
             return

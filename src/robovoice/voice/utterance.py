@@ -67,6 +67,7 @@ class _Speculation:
     onset: float
     at: float
     task: Transcription
+    hint: str
 
 
 class Transcribing:
@@ -79,27 +80,28 @@ class Transcribing:
         self._executor = executor
         self._speculation: _Speculation | None = None
 
-    async def transcribe(self, audio: AudioChunk) -> tuple[str, float]:
-        """(text, model milliseconds)."""
+    async def transcribe(self, audio: AudioChunk, hint: str = "") -> tuple[str, float]:
+        """(text, model milliseconds). `hint`: see `Transcriber.transcribe`."""
         started = time.perf_counter()
-        transcript = await self._executor.run(self.stt.transcribe, audio)
+        transcript = await self._executor.run(self.stt.transcribe, audio, hint)
         return transcript.text, (time.perf_counter() - started) * 1000.0
 
-    def speculate(self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory) -> None:
+    def speculate(self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory, hint: str = "") -> None:
         self.drop()
-        self._speculation = _Speculation(onset, at, create_task(self.transcribe(audio)))
+        self._speculation = _Speculation(onset, at, create_task(self.transcribe(audio, hint)), hint)
 
     def drop(self) -> None:
         if self._speculation is not None:
             self._speculation.task.cancel()
             self._speculation = None
 
-    def take(self, start: float, end: float) -> Transcription | None:
-        """The speculative run covering the utterance `start`..`end`, if there is one."""
+    def take(self, start: float, end: float, hint: str = "") -> Transcription | None:
+        """The speculative run covering the utterance `start`..`end` with this `hint`, if
+        there is one."""
         spec, self._speculation = self._speculation, None
         if spec is None:
             return None
-        if abs(spec.onset - start) < 1e-6 and spec.at >= end - 1e-6:
+        if abs(spec.onset - start) < 1e-6 and spec.at >= end - 1e-6 and spec.hint == hint:
             return spec.task
         spec.task.cancel()
         return None

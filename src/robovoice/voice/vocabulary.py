@@ -1,0 +1,77 @@
+"""Speech-to-text hints: the words this robot's users are likely to say.
+
+A small speech model mishears rare words ("end the call" as "and Macau", "Anna" as
+"Atlanta") far less when it is told what to expect. Whisper takes such a hint as its
+``initial_prompt`` (text it treats as what was said just before). The hint is built from
+what the robot already declares, so nothing is written twice:
+
+- the wake phrase;
+- each tool's name as words ("start_video_call" -> "start video call");
+- the values listed in the tools' parameter schemas: ``enum`` and ``examples`` (JSON
+  Schema keywords; a manifest lists its place names, contacts, ... there);
+- extra words from the configuration (``[voice] vocabulary``);
+- the stop words.
+
+A short utterance heard while the robot moves (no wake word) is only checked for a stop,
+so it gets a hint of stop words alone (`STOP_HINT`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from typing import Any
+
+from robovoice.llm.base import ToolSpec
+
+STOP_HINT = "Stop! Halt! Stop the robot! Stop, stop!"
+# Whisper keeps at most 223 prompt tokens (the last ones); about 3 characters per token
+# leaves room and keeps the hint's decoding cost small.
+MAX_HINT_CHARS = 600
+
+
+def _schema_values(schema: Mapping[str, Any]) -> Iterator[str]:
+    """String values of ``enum``/``examples``/``const`` anywhere in a JSON Schema."""
+    for key in ("enum", "examples"):
+        values = schema.get(key)
+        if isinstance(values, list):
+            yield from (v for v in values if isinstance(v, str))
+    if isinstance(schema.get("const"), str):
+        yield schema["const"]
+    for key in ("properties", "$defs", "definitions"):
+        children = schema.get(key)
+        if isinstance(children, Mapping):
+            for child in children.values():
+                if isinstance(child, Mapping):
+                    yield from _schema_values(child)
+    for key in ("items", "anyOf", "oneOf", "allOf"):
+        children = schema.get(key)
+        for child in children if isinstance(children, list) else [children]:
+            if isinstance(child, Mapping):
+                yield from _schema_values(child)
+
+
+def _unique(words: Iterable[str]) -> list[str]:
+    seen: set[str] = set()
+    out: list[str] = []
+    for word in words:
+        word = " ".join(word.split())
+        if word and word.lower() not in seen:
+            seen.add(word.lower())
+            out.append(word)
+    return out
+
+
+def command_hint(wake_phrase: str, tools: Sequence[ToolSpec], extra: Sequence[str] = ()) -> str:
+    """The hint for an addressed command (see the module docstring), at most
+    `MAX_HINT_CHARS` long: the wake phrase and stop words always fit; tool words and
+    vocabulary are cut from the end when there are too many."""
+    wake = wake_phrase.strip().title()
+    head = f"{wake}." if wake else ""
+    actions = _unique(tool.name.replace("_", " ") for tool in tools)
+    names = _unique([*extra, *(value for tool in tools for value in _schema_values(tool.parameters))])
+    parts = [", ".join(actions) + "." if actions else "", ", ".join(names) + "." if names else ""]
+    body = " ".join(p for p in parts if p)
+    room = MAX_HINT_CHARS - len(head) - len(STOP_HINT) - 2
+    if len(body) > room:
+        body = body[: max(0, room)].rsplit(",", 1)[0] + "."
+    return " ".join(p for p in (head, body, STOP_HINT) if p)

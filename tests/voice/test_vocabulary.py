@@ -1,0 +1,53 @@
+"""Speech-to-text hints built from the robot's tools (robovoice.voice.vocabulary)."""
+
+from __future__ import annotations
+
+from robovoice.llm.base import ToolSpec
+from robovoice.voice.vocabulary import MAX_HINT_CHARS, STOP_HINT, command_hint
+
+NAVIGATE = ToolSpec("navigate_to", "Drive somewhere.", {
+    "type": "object",
+    "properties": {"target": {"type": "string", "examples": ["kitchen", "front door"]}},
+})
+CALL = ToolSpec("start_video_call", "Call someone.", {
+    "type": "object",
+    "properties": {
+        "contact": {"anyOf": [{"enum": ["Anna", "Dr. Weber"]}, {"type": "string"}]},
+        "options": {"type": "object", "properties": {"camera": {"const": "front camera"}}},
+        "tags": {"type": "array", "items": {"enum": ["urgent", 3]}},
+    },
+})
+STOP = ToolSpec("stop_robot", "Stop.")
+
+
+def test_hint_names_the_wake_phrase_the_tools_and_their_values() -> None:
+    hint = command_hint("hey jarvis", [NAVIGATE, CALL, STOP], extra=["Grandpa Joe"])
+    assert hint.startswith("Hey Jarvis. ")
+    assert "navigate to, start video call, stop robot." in hint
+    # examples, enum (also inside anyOf / items) and const values; non-strings are skipped
+    for word in ("kitchen", "front door", "Anna", "Dr. Weber", "front camera", "urgent", "Grandpa Joe"):
+        assert word in hint, word
+    assert " 3" not in hint
+    assert hint.endswith(STOP_HINT)
+
+
+def test_repeated_words_appear_once_and_spacing_is_normalised() -> None:
+    hint = command_hint("hey jarvis", [NAVIGATE, NAVIGATE], extra=["  Kitchen ", "kitchen", "living   room"])
+    assert hint.count("navigate to") == 1
+    assert hint.lower().count("kitchen") == 1
+    assert "living room" in hint
+
+
+def test_without_tools_the_hint_is_the_wake_phrase_and_the_stop_words() -> None:
+    assert command_hint("hey jarvis", []) == f"Hey Jarvis. {STOP_HINT}"
+    assert command_hint("", []) == STOP_HINT
+
+
+def test_a_long_catalog_is_cut_but_keeps_the_wake_phrase_and_stop_words() -> None:
+    many = [ToolSpec(f"tool_number_{i}", "x", {"type": "object", "properties": {
+        "p": {"enum": [f"value {i}"]}}}) for i in range(100)]
+    hint = command_hint("hey jarvis", many)
+    assert len(hint) <= MAX_HINT_CHARS
+    assert hint.startswith("Hey Jarvis. tool number 0, tool number 1")
+    assert hint.endswith(STOP_HINT)
+    assert ",." not in hint and ", ." not in hint
