@@ -157,3 +157,18 @@ async def test_serve_http_says_ready_serves_and_stops_on_sigterm(tmp_path: Path)
         if process.returncode is None:
             process.kill()
             await process.wait()
+
+
+def test_output_into_a_closed_pipe_ends_quietly() -> None:
+    """`robovoice tools --json | head -1`: the reader leaves early; no traceback."""
+    import subprocess
+
+    proc = subprocess.Popen([sys.executable, "-m", "robovoice.cli", "tools", "--robot", "sim", "--json"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    assert proc.stdout is not None and proc.stderr is not None
+    first = proc.stdout.readline()
+    proc.stdout.close()  # like `head -1` exiting
+    err = proc.stderr.read().decode()
+    proc.wait(timeout=BOUND_S)
+    assert first.strip()
+    assert "Traceback" not in err and "BrokenPipeError" not in err
