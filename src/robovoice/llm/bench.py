@@ -121,7 +121,9 @@ async def bench_local(
     loaded and closed again.
     """
     own = backend is None
-    llm = backend if backend is not None else LocalLlamaBackend(deadlines=BENCH_DEADLINES)
+    # tool_bias is calibrated for the assistant's own prompt (docs/llm.md); this bench's short
+    # prompt would turn its small-talk turn into a tool call, so it measures the model untilted
+    llm = backend if backend is not None else LocalLlamaBackend(deadlines=BENCH_DEADLINES, tool_bias=0.0)
     try:
         load_s = await llm.load()
         await llm.reset_cache()
