@@ -34,3 +34,10 @@ def piper() -> Iterator[Any]:
     from robovoice.audio.tts import PiperSynthesizer
 
     yield PiperSynthesizer()
+
+
+@pytest.fixture(scope="session")
+def whisper() -> Iterator[Any]:
+    from robovoice.audio.stt import WhisperTranscriber
+
+    yield WhisperTranscriber()

