@@ -74,6 +74,9 @@ class LLMConfig(_Frozen):
 
 class VoiceConfig(_Frozen):
     wake_model: str = "hey_jarvis"
+    # what the wake word says, for stripping it from transcripts and for speech-to-text hints;
+    # default: the bundled model's name as words ("hey_mycroft" -> "hey mycroft")
+    wake_phrase: str | None = None
     wake_threshold: float = Field(default=0.5, gt=0, lt=1)
     end_of_turn_silence_ms: int = Field(default=500, ge=100)
     max_utterance_s: float = Field(default=15.0, gt=0)

@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
+from pathlib import PurePath
 
 from robovoice.audio.vad import EndpointerConfig
 from robovoice.audio.wake import WakeDeciderConfig
@@ -87,8 +89,12 @@ class VoiceConfig:
 
 def from_settings(settings: VoiceSettings) -> VoiceConfig:
     """The pipeline's config from the ``[voice]`` section of robovoice.toml."""
+    phrase = settings.wake_phrase
+    if phrase is None:  # the model's name as words: "hey_jarvis", ".../okay_robot_v0.2.onnx"
+        phrase = re.sub(r"_v[\d.]+$", "", PurePath(settings.wake_model).stem).replace("_", " ")
     return VoiceConfig(
         wake_model=settings.wake_model,
+        wake_phrase=phrase,
         wake=WakeDeciderConfig(threshold=settings.wake_threshold),
         endpointer=EndpointerConfig(end_silence_s=settings.end_of_turn_silence_ms / 1000.0,
                                     max_utterance_s=settings.max_utterance_s),
