@@ -249,8 +249,9 @@ def test_wake_scores_match_openwakeword_model(wake_detector: OpenWakeWordDetecto
 
 
 # Eval clips (tests/data/eval/audio) that Whisper tiny.en mishears without being told the
-# robot's words: an espeak-ng voice in white noise, and one in pink noise.
-HINTED_CLIPS = [("wake-end-call-1", "end the call"), ("wake-stop-1", "stop")]
+# robot's words ("and Macau", "Carolina", "Dr. Wehrmacht"): espeak-ng voices, clean to noisy.
+HINTED_CLIPS = [("wake-end-call-1", "end the call"), ("wake-call-anna-2", "call anna"),
+                ("wake-call-doctor-1", "weber")]
 
 
 @pytest.mark.parametrize(("clip_id", "words"), HINTED_CLIPS, ids=[c for c, _ in HINTED_CLIPS])
