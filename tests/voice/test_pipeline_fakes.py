@@ -207,7 +207,8 @@ async def test_audio_capable_backend_gets_the_utterance_as_wav(server: FakeOpenA
 async def test_wake_word_while_speaking_barges_in(
     fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
 ) -> None:
-    long_reply = " ".join(f"This is sentence number {i} of a rather long answer." for i in range(1, 9))
+    # long enough that the barge-in lands inside it even when a loaded machine delays the test
+    long_reply = " ".join(f"This is sentence number {i} of a rather long answer." for i in range(1, 25))
     server.push(TextReply(long_reply), TextReply("Sure, the projector is on."))
     async with voice_session(fakes, backend, speed=2.0) as s:
         transcriber.text = "Hey Jarvis, tell me something."
@@ -223,7 +224,7 @@ async def test_wake_word_while_speaking_barges_in(
     assert first.turn == 1 and first.cancelled
     assert s.room.speaker.stop_count >= 1
     spoken_first = [e.text for e in s.log.of(SentenceSpoken) if e.turn == 1]
-    assert 1 <= len(spoken_first) < 8, "the long answer was cut short"
+    assert 1 <= len(spoken_first) < 24, "the long answer was cut short"
     assert s.log.of(WakeWordHeard)[-1].during_playback
 
 
