@@ -3,6 +3,7 @@ embedded sim robot behind the real MCP server and SDK client."""
 
 from __future__ import annotations
 
+import itertools
 import json
 
 from robovoice.assistant.connect import RobotTarget, open_robot
@@ -143,6 +144,21 @@ async def test_history_is_bounded_and_starts_at_a_user_message() -> None:
             for i in range(5):
                 await assistant.turn(f"message {i}")
             last = list(server.requests)[-1]
-        assert len(assistant.history) == 4 and assistant.history[0].role == "user"
+        assert 1 <= len(assistant.history) <= 4 and assistant.history[0].role == "user"
         assert [m["content"] for m in last.messages if m["role"] == "user"][-1] == "message 4"
         assert "message 0" not in json.dumps(last.messages)
+
+
+async def test_history_is_cut_in_halves_so_prompts_mostly_grow_by_appending() -> None:
+    """Prefix caching on the model side pays off only while each prompt extends the last one."""
+    async with open_robot(SIM) as robot, FakeOpenAIServer([], default=TextReply("Okay.")) as server:
+        assistant = Assistant(_backend(server), robot.tools, max_history_messages=8)
+        for i in range(12):
+            await assistant.turn(f"message {i}")
+            assert len(assistant.history) <= 8 and assistant.history[0].role == "user"
+        prompts = [r.messages for r in server.requests]
+    extended = sum(later[: len(earlier)] == earlier for earlier, later in itertools.pairwise(prompts))
+    # 12 turns of 2 messages, a window of 8 cut to 4 when exceeded: the history is cut before
+    # every third turn once full, so 8 of the 11 later prompts extend the one before
+    assert extended == 8  # sliding by one turn once the window is full: only the first 4
+    assert all(len(p) <= 1 + 8 + 1 for p in prompts)  # system + history + the new user message
