@@ -72,7 +72,7 @@ async def test_structured_tool_error_goes_back_and_the_model_recovers() -> None:
         assert error.is_error
         body = json.loads(error.text)
         assert body["error"] == "unknown_target" and "kitchen" in body["details"]["known_places"]
-        assert "get_navigation_targets" in body["hint"]
+        assert "name the known places" in body["hint"]
         assert "unknown_target" in second.messages[-1]["content"]  # the model saw the structured error
         assert [c.name for c in result.calls] == ["navigate_to", "get_navigation_targets"]
         assert result.reply.endswith("Which one?")

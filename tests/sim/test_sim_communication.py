@@ -75,7 +75,7 @@ async def test_unknown_contact(bus: MemoryMiddleware, start: StartRobot) -> None
     body = err.value.to_dict()
     assert body["error"] == "unknown_contact"
     assert body["details"]["contacts"] == CONTACTS
-    assert "list_contacts" in body["hint"]
+    assert "name the contacts you can call" in body["hint"]
     assert "Anna" in body["message"] and "Dr. Weber" in body["message"]
     assert not robot.state.in_call
 

@@ -69,7 +69,7 @@ async def test_unknown_target(bus: MemoryMiddleware, start: StartRobot, feedback
         await _drive(bus, "garage", feedback)
     body = err.value.to_dict()
     assert body["error"] == "unknown_target"
-    assert body["hint"] == "call get_navigation_targets and ask the user which place they mean"
+    assert body["hint"] == "tell the user you do not know that place, name the known places and ask which one they mean"
     assert body["details"]["known_places"] == KNOWN
     assert "garage" in body["message"]
     assert not robot.state.moving and feedback.items == []

@@ -150,7 +150,7 @@ class CommunicationNode:
             raise RobotFailure(
                 f"no contact called {requested!r}; contacts: {', '.join(names)}",
                 code="unknown_contact",
-                hint="call list_contacts and ask the user whom they want to call",
+                hint="tell the user you cannot call them and name the contacts you can call",
                 details={"contact": requested,
                          "contacts": [{"name": c.name, "relation": c.relation} for c in CONTACTS]},
             )

@@ -120,7 +120,7 @@ class NavigationNode:
             raise RobotFailure(
                 f"unknown place {target!r}; known places: {', '.join(known)}",
                 code="unknown_target",
-                hint="call get_navigation_targets and ask the user which place they mean",
+                hint="tell the user you do not know that place, name the known places and ask which one they mean",
                 details={"target": target, "known_places": known},
             )
         if place.blocked is not None:
