@@ -260,16 +260,18 @@ def test_whisper_hears_the_robots_words_with_the_tool_hint(
 ) -> None:
     from robovoice.audio.wav import read_wav
     from robovoice.llm.base import ToolSpec
+    from robovoice.sim import NODE_NAMES
     from robovoice.sim.node import load_manifest
+    from robovoice.voice.utterance import strip_wake_words
     from robovoice.voice.vocabulary import command_hint
 
-    nodes = ("base", "camera", "communication", "localization", "navigation", "projector")
     specs = [ToolSpec(t["name"], t["description"], t.get("parameters", {}))
-             for node in nodes for t in load_manifest(node).get("tools", [])]
+             for node in NODE_NAMES for t in load_manifest(node).get("tools", [])]
     audio = read_wav(EVAL_AUDIO / f"{clip_id}.wav")
     hint = command_hint("hey jarvis", specs)
     plain = normalize_text(whisper.transcribe(audio).text)
-    hinted = normalize_text(whisper.transcribe(audio, hint).text)
+    hinted_text = whisper.transcribe(audio, hint).text
+    hinted = normalize_text(hinted_text)
     assert words not in plain  # the clip is hard without the hint ...
     assert hinted.endswith(words), hinted  # ... and understood with it
-    assert strip_wake_phrase(whisper.transcribe(audio, hint).text) != ""
+    assert strip_wake_words(hinted_text) != ""  # what the pipeline does with it: the command is left
