@@ -3,6 +3,7 @@ pipeline, the evaluation) — handled with `match`."""
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -26,11 +27,17 @@ class ToolCalled:
 
 @dataclass(frozen=True, slots=True)
 class ToolReturned:
+    """A tool's result. `error`: the structured error code of a failed call (``unknown_target``,
+    ``invalid_arguments``…), None on success; `result`: the structured body the robot sent back
+    (the value, or ``{error, message, hint, details}``), None when there was none (an image)."""
+
     call_id: str
     name: str
     text: str
     is_error: bool
     duration_ms: float
+    error: str | None = None
+    result: Mapping[str, Any] | None = None
 
 
 @dataclass(frozen=True, slots=True)

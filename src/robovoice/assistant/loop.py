@@ -186,7 +186,7 @@ class Assistant:
         if request.arguments_error is not None:
             body = {"error": "invalid_arguments", "message": request.arguments_error,
                     "hint": "call the tool again with a JSON object of arguments", "details": {}}
-            outcome = ToolOutcome(json.dumps(body), True, 0.0)
+            outcome = ToolOutcome(json.dumps(body), True, 0.0, body)
         else:
             async def on_progress(progress: float, total: float | None, message: str | None) -> None:
                 await self._emit(ToolProgressed(request.name, progress, total, message or ""))
@@ -194,7 +194,8 @@ class Assistant:
             outcome = await self.tools.call(request.name, dict(request.arguments), on_progress)
         metrics.tools_ms += outcome.duration_ms
         metrics.mark(f"tool_result:{request.name}")
-        returned = ToolReturned(request.id, request.name, outcome.text, outcome.is_error, outcome.duration_ms)
+        returned = ToolReturned(request.id, request.name, outcome.text, outcome.is_error, outcome.duration_ms,
+                                outcome.error, outcome.structured)
         await self._emit(returned)
         return called, returned
 

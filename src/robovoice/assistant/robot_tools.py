@@ -33,6 +33,14 @@ class ToolOutcome:
     duration_ms: float
     structured: Any = None
 
+    @property
+    def error(self) -> str | None:
+        """The structured error code of a failed call (``tool_error`` when the server sent none)."""
+        if not self.is_error:
+            return None
+        code = self.structured.get("error") if isinstance(self.structured, dict) else None
+        return code if isinstance(code, str) and code else "tool_error"
+
 
 def _content_text(result: types.CallToolResult) -> str:
     parts: list[str] = []
@@ -95,7 +103,7 @@ class RobotTools:
             log.warning("tool %s failed at the MCP level: %s", name, exc)
             body = {"error": "tool_unavailable", "message": str(exc) or type(exc).__name__,
                     "hint": "the robot could not be reached; tell the user", "details": {"tool": name}}
-            return ToolOutcome(json.dumps(body), True, (time.perf_counter() - start) * 1000.0)
+            return ToolOutcome(json.dumps(body), True, (time.perf_counter() - start) * 1000.0, body)
         return ToolOutcome(
             _content_text(result), bool(result.is_error), (time.perf_counter() - start) * 1000.0,
             result.structured_content,
