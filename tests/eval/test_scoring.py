@@ -65,3 +65,28 @@ def test_shipped_text_set_is_valid_and_covers_every_tool() -> None:
                      "set_projector_power", "start_video_call", "end_video_call", "list_contacts",
                      "get_battery_state", "get_robot_pose", "get_camera_image"}
     assert sum(1 for c in cases if not c.expect and c.forbid) >= 6  # chit-chat that must not act
+
+
+def test_resolved_arguments_and_refused_calls() -> None:
+    from robovoice.eval.scoring import resolved_arguments
+
+    living = case(expect=[{"tool": "navigate_to", "args": {"target": "living room"}}])
+    sent = MadeCall("navigate_to", {"target": "lounge"})
+    assert not score_case(living, [sent]).passed
+    taken = MadeCall("navigate_to", {"target": "lounge"}, resolved={"target": "living room"})
+    assert score_case(living, [taken]).passed
+    assert resolved_arguments({"target": "lounge"}, {"target": "living room", "arrived": "living room"}) == {
+        "target": "living room"}
+    assert resolved_arguments({"target": "Kitchen"}, {"target": "kitchen"}) == {}  # same place, other case
+    assert resolved_arguments({"target": "garage"}, {"error": "unknown_target", "details": {"target": "garage"}}) == {}
+    assert resolved_arguments({"contact": "my son"}, {"error": "busy", "details": {"contact": "Ben"}}) == {
+        "contact": "Ben"}
+    assert resolved_arguments({"target": "x"}, None) == {}
+
+    forbid = case(expect=[], forbid=["navigate_to"])
+    refused = score_case(forbid, [MadeCall("navigate_to", {"target": "garage"}, error="unknown_target")])
+    assert refused.passed and refused.false_actuations == ()
+    interrupted = score_case(forbid, [MadeCall("navigate_to", {"target": "kitchen"}, error="cancelled")])
+    assert not interrupted.passed and interrupted.false_actuations == ("navigate_to",)  # it drove, then stopped
+    looked = score_case(case(expect=[], forbid=["get_robot_pose"]), [MadeCall("get_robot_pose", {}, actuation=False)])
+    assert not looked.passed and looked.false_actuations == ()

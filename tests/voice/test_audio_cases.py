@@ -7,14 +7,14 @@ import wave
 from pathlib import Path
 
 import pytest
-from voice_kit import DATA, keyword_router
+from .voice_kit import DATA, keyword_router
 
 from robovoice.assistant.connect import RobotTarget, open_robot
 from robovoice.eval.cases import load_cases
 from robovoice.eval.runner import run_eval
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
-from robovoice.voice.evaluation import open_audio_frontend
+from robovoice.voice.evaluation import open_clip_runner
 from robovoice.voice.models import VoiceModels
 
 CASES = DATA / "eval" / "audio.jsonl"
@@ -49,7 +49,7 @@ async def test_audio_cases_through_the_pipeline(voice_models: VoiceModels) -> No
     async with FakeOpenAIServer(default=CallbackReply(keyword_router)) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
         try:
-            async with open_audio_frontend(models=voice_models) as audio:
+            async with open_clip_runner(models=voice_models) as audio:
                 report = await run_eval(cases, backend, lambda: open_robot(RobotTarget(sim_speed=2.0)),
                                         audio=audio)
         finally:
@@ -58,7 +58,7 @@ async def test_audio_cases_through_the_pipeline(voice_models: VoiceModels) -> No
     by_id = {r["id"]: r for r in summary["results"]}
     assert all(r["passed"] for r in summary["results"]), [(r["id"], r["reason"]) for r in summary["results"]]
     assert by_id["nowake-02"]["calls"] == [] and by_id["nowake-02"]["wake_words"] == 0
-    assert by_id["wake-stop-2"]["calls"] == [{"tool": "stop_robot", "args": {}}] and by_id["wake-stop-2"]["stops"] == 1
+    assert by_id["wake-stop-2"]["calls"] == [{"tool": "stop_robot", "args": {}, "error": None, "resolved": {}}] and by_id["wake-stop-2"]["stops"] == 1
     assert by_id["nowake-stop-2"]["stops"] == 1
     # the stops never asked the model: one request for the projector and its tool result only
     assert [r.last_user_text for r in server.requests] == ["turn on the projector."] * 2

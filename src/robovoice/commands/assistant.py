@@ -140,9 +140,9 @@ async def _eval(args: argparse.Namespace) -> int:
         async with open_robot(target) as link:  # once, to warm the model with the real tool list
             await warm_up(backend, await link.tools.specs())
         if any(c.audio is not None for c in cases):
-            from robovoice.voice.evaluation import open_audio_frontend  # needs robovoice[voice]
+            from robovoice.voice.evaluation import open_clip_runner  # needs robovoice[voice]
 
-            async with open_audio_frontend(config) as audio:
+            async with open_clip_runner(config) as audio:
                 report = await run_eval(cases, backend, lambda: open_robot(target), audio=audio,
                                         on_result=None if args.quiet else _print_case)
         else:

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import logging
 import time
-from collections.abc import Awaitable, Callable, Sequence
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from contextlib import AbstractAsyncContextManager
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -17,7 +17,7 @@ from robovoice.assistant.loop import Assistant, TurnResult
 from robovoice.assistant.metrics import TurnMetrics, percentile, summarise
 from robovoice.assistant.robot_tools import RobotTools
 from robovoice.eval.cases import Case
-from robovoice.eval.scoring import MadeCall, score_case
+from robovoice.eval.scoring import MadeCall, resolved_arguments, score_case
 from robovoice.llm.base import LLMBackend
 
 log = logging.getLogger(__name__)
@@ -34,11 +34,27 @@ class RobotLink(Protocol):
     async def apply_setup(self, setup: str) -> None: ...
 
 
-class AudioFrontEnd(Protocol):
-    """The voice pipeline as the evaluation sees it: a clip in, the turn it led to (or None
-    when the assistant rightly did not act, e.g. no wake word)."""
+@dataclass(frozen=True, slots=True)
+class ClipOutcome:
+    """What one audio clip led to in the voice pipeline: the turns it ran (none when the
+    assistant rightly did nothing, e.g. no wake word; a spoken stop is a turn with the stop
+    call) and what was heard on the way."""
 
-    async def run_clip(self, case: Case, assistant: Assistant) -> tuple[TurnResult | None, dict[str, Any]]: ...
+    turns: tuple[TurnResult, ...]
+    wake_words: int = 0
+    transcripts: tuple[str, ...] = ()
+    ignored: tuple[str, ...] = ()
+    stops: int = 0
+
+    def details(self) -> dict[str, Any]:
+        return {"wake_words": self.wake_words, "transcripts": list(self.transcripts),
+                "ignored": list(self.ignored), "stops": self.stops}
+
+
+class ClipRunner(Protocol):
+    """The voice pipeline as the evaluation sees it: a clip in, one frozen outcome out."""
+
+    async def run_clip(self, case: Case, backend: LLMBackend, tools: RobotTools) -> ClipOutcome: ...
 
 
 OpenRobot = Callable[[], AbstractAsyncContextManager[RobotLink]]
@@ -52,11 +68,12 @@ class CaseResult:
     calls: list[dict[str, Any]]
     reply: str
     latency_ms: dict[str, float]
+    false_actuations: list[str] = field(default_factory=list)
     extra: dict[str, Any] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         out = {"id": self.id, "passed": self.passed, "reason": self.reason, "calls": self.calls,
-               "reply": self.reply, "latency_ms": self.latency_ms}
+               "false_actuations": self.false_actuations, "reply": self.reply, "latency_ms": self.latency_ms}
         out.update(self.extra)
         return out
 
@@ -74,6 +91,7 @@ class EvalReport:
             "cases": len(self.results),
             "passed": passed,
             "accuracy": round(passed / len(self.results), 4) if self.results else 0.0,
+            "false_actuations": sum(len(r.false_actuations) for r in self.results),
             "p50": round(percentile(headline, 50), 1) if headline else None,
             "p95": round(percentile(headline, 95), 1) if headline else None,
             "latency_stage": HEADLINE_STAGE,
@@ -84,31 +102,54 @@ class EvalReport:
         }
 
 
+def _made_calls(
+    turns: Sequence[TurnResult], read_only: Mapping[str, bool]
+) -> list[MadeCall]:
+    """The calls of `turns` with what became of them at the robot."""
+    made: list[MadeCall] = []
+    for turn in turns:
+        returned = {o.call_id: o for o in turn.outcomes}
+        for call in turn.calls:
+            outcome = returned.get(call.call_id)
+            error = None if outcome is None else (outcome.error or ("tool_error" if outcome.is_error else None))
+            resolved = resolved_arguments(call.arguments, outcome.result if outcome is not None else None)
+            made.append(MadeCall(call.name, call.arguments, error, resolved, not read_only.get(call.name, False)))
+    return made
+
+
+async def _read_only_tools(tools: RobotTools) -> dict[str, bool]:
+    """Which tools declare themselves read-only (they cannot be false actuations)."""
+    listing = await tools.client.list_tools()
+    return {t.name: bool(t.annotations and t.annotations.read_only_hint) for t in listing.tools}
+
+
 async def run_case(
-    case: Case, backend: LLMBackend, open_robot: OpenRobot, audio: AudioFrontEnd | None = None
+    case: Case, backend: LLMBackend, open_robot: OpenRobot, audio: ClipRunner | None = None
 ) -> CaseResult:
+    details: dict[str, Any] = {}
     async with open_robot() as link:
         if case.setup:
             await link.apply_setup(case.setup)
-        assistant = Assistant(backend, link.tools)
-        extra: dict[str, Any] = {}
+        read_only = await _read_only_tools(link.tools)
         if case.audio is not None:
             if audio is None:
                 return CaseResult(case.id, False, "audio case but no voice pipeline available", [], "", {})
-            result, extra = await audio.run_clip(case, assistant)
+            clip = await audio.run_clip(case, backend, link.tools)
+            turns, details = clip.turns, clip.details()
         else:
             assert case.text is not None
-            result = await assistant.turn(case.text, metrics=TurnMetrics())
-    calls = list(result.calls) if result else []
-    verdict = score_case(case, [MadeCall(c.name, c.arguments) for c in calls])
+            turns = (await Assistant(backend, link.tools).turn(case.text, metrics=TurnMetrics()),)
+    calls = _made_calls(turns, read_only)
+    verdict = score_case(case, calls)
     return CaseResult(
         id=case.id,
         passed=verdict.passed,
         reason=verdict.reason,
-        calls=[{"tool": c.name, "args": c.arguments} for c in calls],
-        reply=result.reply if result else "",
-        latency_ms=result.metrics.as_dict() if result else {},
-        extra=extra,
+        calls=[{"tool": c.tool, "args": dict(c.args), "error": c.error, "resolved": dict(c.resolved)} for c in calls],
+        reply=" ".join(t.reply for t in turns),
+        latency_ms=turns[0].metrics.as_dict() if turns else {},
+        false_actuations=list(verdict.false_actuations),
+        extra=details,
     )
 
 
@@ -117,7 +158,7 @@ async def run_eval(
     backend: LLMBackend,
     open_robot: OpenRobot,
     *,
-    audio: AudioFrontEnd | None = None,
+    audio: ClipRunner | None = None,
     on_result: Callable[[CaseResult], Awaitable[None] | None] | None = None,
 ) -> EvalReport:
     start = time.perf_counter()

@@ -7,6 +7,8 @@
   drive replaces one under way. A halted drive (the `cancel` RPC, the base's `stop`, a
   new goal) ends with `RobotFailure(code="cancelled")`; cancelling the caller's task
   stops the robot too.
+  The result names the place as resolved (`{"target": "living room", "arrived": …}` for
+  "lounge").
 - RPC `list_targets()`: the known places, which are reachable, where the robot is.
 - RPC `cancel()`: halts the drive under way; with none, fails with `not_driving` (so the
   model can say "I wasn't driving" rather than claim it stopped something).
@@ -159,8 +161,8 @@ class NavigationNode:
             await previous.wait_ended(HALT_WAIT_S)
         start = self._body.pose.point
         if start.distance_to(place.position) <= ARRIVAL_TOLERANCE_M:
-            return {"arrived": place.name, "distance_m": 0.0, "duration_s": 0.0, "already_there": True,
-                    "message": f"already at the {place.name}"}
+            return {"target": place.name, "arrived": place.name, "distance_m": 0.0, "duration_s": 0.0,
+                    "already_there": True, "message": f"already at the {place.name}"}
 
         motion = self._body.begin_motion(f"drive to the {place.name}")
         points = route(start, place.position)
@@ -200,7 +202,8 @@ class NavigationNode:
             self._body.end_motion(motion)
         duration = self._clock.now() - started
         log.info("arrived at the %s after %.1f s", place.name, duration)
-        return {"arrived": place.name, "distance_m": round(drive.total_m, 2),
+        # `target` is the place as the robot resolved it ("lounge" -> "living room")
+        return {"target": place.name, "arrived": place.name, "distance_m": round(drive.total_m, 2),
                 "duration_s": round(duration, 1)}
 
     def _feedback(self, drive: _Drive) -> Feedback:

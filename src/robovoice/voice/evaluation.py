@@ -1,13 +1,13 @@
 """Audio cases for `robovoice eval` (DESIGN.md §6): each clip through the whole pipeline.
 
-    async with open_audio_frontend(config) as audio:
+    async with open_clip_runner(config) as audio:
         report = await run_eval(cases, backend, open_robot, audio=audio)
 
 Every clip is spoken into a fresh `SimulatedRoom` (echo of the robot's answer included)
 and heard by a fresh `VoicePipeline` — wake word, VAD, speech-to-text (or the audio itself
 for an audio-capable backend), the assistant's turn, speech — sharing the loaded models.
-The turn the clip led to (or None when the assistant rightly did nothing: no wake word) is
-what gets scored; a spoken stop counts as its ``stop_robot`` call.
+The turns the clip led to (none when the assistant rightly did nothing: no wake word) come
+back as one frozen `ClipOutcome` and are scored; a spoken stop counts as its stop tool's call.
 """
 
 from __future__ import annotations
@@ -17,12 +17,13 @@ import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
-from typing import Any
 
-from robovoice.assistant.loop import Assistant, TurnResult
+from robovoice.assistant.robot_tools import RobotTools
 from robovoice.audio.wav import read_wav
 from robovoice.config import Config
 from robovoice.eval.cases import Case
+from robovoice.eval.runner import ClipOutcome
+from robovoice.llm.base import LLMBackend
 from robovoice.voice.config import VoiceConfig, from_settings
 from robovoice.voice.events import PipelineEvent, TranscriptReady, UtteranceIgnored, WakeWordHeard
 from robovoice.voice.models import VoiceModels, load_voice_models
@@ -32,9 +33,9 @@ from robovoice.voice.room import SimulatedRoom
 log = logging.getLogger(__name__)
 
 
-@dataclass
-class VoiceFrontEnd:
-    """`robovoice.eval.runner.AudioFrontEnd` over the voice pipeline (see module docstring).
+@dataclass(frozen=True, slots=True)
+class VoiceClipRunner:
+    """`robovoice.eval.runner.ClipRunner` over the voice pipeline (see module docstring).
     `speed`: how much faster than real time the room plays the clip."""
 
     models: VoiceModels
@@ -42,12 +43,12 @@ class VoiceFrontEnd:
     speed: float = 1.0
     turn_timeout_s: float = 180.0
 
-    async def run_clip(self, case: Case, assistant: Assistant) -> tuple[TurnResult | None, dict[str, Any]]:
+    async def run_clip(self, case: Case, backend: LLMBackend, tools: RobotTools) -> ClipOutcome:
         assert case.audio is not None
         audio = read_wav(case.audio)
         room = SimulatedRoom(speed=self.speed)
         heard: list[PipelineEvent] = []
-        pipeline = VoicePipeline(self.models, assistant.backend, assistant.tools, source=room.mic,
+        pipeline = VoicePipeline(self.models, backend, tools, source=room.mic,
                                  sink=room.speaker, reference=room.reference, config=self.config,
                                  observer=heard.append)
 
@@ -64,31 +65,22 @@ class VoiceFrontEnd:
         async with asyncio.TaskGroup() as group:
             group.create_task(pipeline.run(finish_timeout_s=10.0), name=f"eval-{case.id}-pipeline")
             group.create_task(speak(), name=f"eval-{case.id}-speak")
-        transcripts = [e.text for e in heard if isinstance(e, TranscriptReady)]
-        extra: dict[str, Any] = {
-            "wake_words": sum(isinstance(e, WakeWordHeard) for e in heard),
-            "transcripts": transcripts,
-            "ignored": [f"{e.reason}: {e.text}" if e.text else e.reason
-                        for e in heard if isinstance(e, UtteranceIgnored)],
-            "stops": pipeline.stats.stops,
-        }
-        results = pipeline.results
-        if not results:
-            return None, extra
-        if len(results) == 1:
-            return results[0], extra
-        merged = TurnResult(" ".join(r.reply for r in results), tuple(c for r in results for c in r.calls),
-                            tuple(o for r in results for o in r.outcomes), results[0].metrics,
-                            any(r.fell_back for r in results))
-        return merged, extra
+        return ClipOutcome(
+            turns=tuple(pipeline.results),
+            wake_words=sum(isinstance(e, WakeWordHeard) for e in heard),
+            transcripts=tuple(e.text for e in heard if isinstance(e, TranscriptReady)),
+            ignored=tuple(f"{e.reason}: {e.text}" if e.text else e.reason
+                          for e in heard if isinstance(e, UtteranceIgnored)),
+            stops=pipeline.stats.stops,
+        )
 
 
 @asynccontextmanager
-async def open_audio_frontend(
+async def open_clip_runner(
     config: Config | None = None, *, models: VoiceModels | None = None, speed: float = 1.0
-) -> AsyncIterator[VoiceFrontEnd]:
-    """Load the voice models (unless given) and yield the front end for audio cases."""
+) -> AsyncIterator[VoiceClipRunner]:
+    """Load the voice models (unless given) and yield the clip runner for audio cases."""
     settings = (config or Config()).voice
     if models is None:
         models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model, stt=settings.stt)
-    yield VoiceFrontEnd(models, from_settings(settings), speed)
+    yield VoiceClipRunner(models, from_settings(settings), speed)

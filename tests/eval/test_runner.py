@@ -1,0 +1,58 @@
+"""`run_eval` end to end on the embedded sim with a scripted model: each call in the report
+says what became of it at the robot (its error code, the argument the robot resolved), and
+only forbidden actuation tools that ran count as false actuations."""
+
+from __future__ import annotations
+
+from robovoice.assistant.connect import RobotTarget, open_robot
+from robovoice.eval.cases import Case
+from robovoice.eval.runner import run_eval
+from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
+from robovoice.llm.openai_compat import OpenAICompatBackend
+
+
+def case(**fields: object) -> Case:
+    return Case.model_validate(fields)
+
+
+def call(name: str, **arguments: object) -> ToolCallReply:
+    return ToolCallReply((ScriptedCall(name, arguments),))
+
+
+async def test_the_report_says_what_reached_the_robot() -> None:
+    cases = [
+        case(id="lounge", text="Go to the lounge", expect=[{"tool": "navigate_to", "args": {"target": "living room"}}]),
+        case(id="garage", text="Drive to the garage", expect=[], forbid=["navigate_to"]),
+        case(id="negated", text="Don't switch the projector on", expect=[], forbid=["set_projector_power"]),
+        case(id="read-only", text="How is the battery?", expect=[], forbid=["get_battery_state"]),
+    ]
+    script = [
+        call("navigate_to", target="lounge"), TextReply("I am in the living room."),
+        call("navigate_to", target="garage"), TextReply("I don't know the garage."),
+        call("set_projector_power", on=True), TextReply("The projector is on."),
+        call("get_battery_state"), TextReply("The battery is fine."),
+    ]
+    async with FakeOpenAIServer(script) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            report = (await run_eval(cases, backend, lambda: open_robot(RobotTarget(sim_speed=40.0)))).to_dict()
+        finally:
+            await backend.aclose()
+    by_id = {r["id"]: r for r in report["results"]}
+
+    lounge = by_id["lounge"]
+    assert lounge["passed"], lounge["reason"]  # the robot drove to the living room
+    assert lounge["calls"] == [{"tool": "navigate_to", "args": {"target": "lounge"}, "error": None,
+                                "resolved": {"target": "living room"}}]
+
+    garage = by_id["garage"]  # refused before acting: nothing moved, not a false actuation
+    assert garage["passed"] and "refused by the robot" in garage["reason"]
+    assert garage["calls"][0]["error"] == "unknown_target" and garage["false_actuations"] == []
+
+    negated = by_id["negated"]
+    assert not negated["passed"] and negated["false_actuations"] == ["set_projector_power"]
+
+    read_only = by_id["read-only"]  # forbidden, so the case fails, but a read-only tool actuates nothing
+    assert not read_only["passed"] and read_only["false_actuations"] == []
+
+    assert report["false_actuations"] == 1 and report["passed"] == 2
