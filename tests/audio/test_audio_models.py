@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from audio_clips import CLIPS, Clip, clip
+from .audio_clips import CLIPS, Clip, clip
 
 from robovoice.audio.bench import normalize_text, word_error_rate
 from robovoice.audio.format import MODEL_FORMAT, PIPER_FORMAT, AudioChunk, convert, rms_dbfs, split_chunk

@@ -13,7 +13,7 @@ import mcp_types as types
 import pytest
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
-from mcp_testkit import (
+from .mcp_testkit import (
     BOUND_S,
     DRIVING,
     SIM_PLACES,

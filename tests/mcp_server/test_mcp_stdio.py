@@ -11,7 +11,7 @@ import mcp_types as types
 import pytest
 from mcp import Client
 from mcp.client.stdio import StdioServerParameters
-from mcp_testkit import BOUND_S, DRIVING, FAST, SIM_TOOLS, Progress, body
+from .mcp_testkit import BOUND_S, DRIVING, FAST, SIM_TOOLS, Progress, body
 
 
 def _server(audit: Path, speed: float) -> StdioServerParameters:

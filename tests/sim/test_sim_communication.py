@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 import pytest
-from sim_testkit import StartRobot
+from .sim_testkit import StartRobot
 
 from robovoice.errors import InvalidArgumentsError, RobotFailure
 from robovoice.middleware.memory import MemoryMiddleware

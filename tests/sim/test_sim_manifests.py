@@ -6,7 +6,7 @@ import json
 from pathlib import Path
 
 import pytest
-from sim_testkit import StartRobot
+from .sim_testkit import StartRobot
 
 from robovoice.manifest import check_manifest_dir
 from robovoice.manifest.model import Manifest

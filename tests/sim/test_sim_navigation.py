@@ -6,7 +6,7 @@ import asyncio
 from typing import Any
 
 import pytest
-from sim_testkit import BOUND_S, FeedbackLog, StartRobot
+from .sim_testkit import BOUND_S, FeedbackLog, StartRobot
 
 from robovoice.errors import CancelledByRobotError, InvalidArgumentsError, RobotFailure
 from robovoice.middleware.memory import MemoryMiddleware

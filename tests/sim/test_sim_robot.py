@@ -8,7 +8,7 @@ from collections.abc import Mapping
 from typing import Any
 
 import pytest
-from sim_testkit import BOUND_S, StartRobot
+from .sim_testkit import BOUND_S, StartRobot
 
 from robovoice.errors import ConfigError, NodeUnavailableError
 from robovoice.middleware.base import ActionHandler, NodeHost, NodeInfo, RpcHandler

@@ -10,7 +10,7 @@ import time
 
 import numpy as np
 import pytest
-from voice_kit import ROOM_ECHO, clip
+from .voice_kit import ROOM_ECHO, clip
 
 from robovoice.audio.fakes import ToneSynthesizer
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, as_float32

@@ -8,7 +8,7 @@ import wave
 from pathlib import Path
 
 import pytest
-from voice_kit import SettableTranscriber, babble, fake_models, tone, voice_session, wait_until, wake_command
+from .voice_kit import SettableTranscriber, babble, fake_models, tone, voice_session, wait_until, wake_command
 
 from robovoice.assistant.events import BackendFailed, ToolCalled, ToolReturned
 from robovoice.llm.base import Deadlines

@@ -10,7 +10,7 @@ import wave
 from pathlib import Path
 
 import pytest
-from voice_kit import TEST_AUDIO, clip, keyword_router, voice_session, wait_until
+from .voice_kit import TEST_AUDIO, clip, keyword_router, voice_session, wait_until
 
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, silence
 from robovoice.audio.wav import read_wav

@@ -9,7 +9,7 @@ import wave
 from pathlib import Path
 
 import pytest
-from voice_kit import TEST_AUDIO, keyword_router
+from .voice_kit import TEST_AUDIO, keyword_router
 
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 
