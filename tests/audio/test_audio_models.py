@@ -7,7 +7,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from .audio_clips import CLIPS, Clip, clip
 
 from robovoice.audio.bench import normalize_text, word_error_rate
 from robovoice.audio.format import MODEL_FORMAT, PIPER_FORMAT, AudioChunk, convert, rms_dbfs, split_chunk
@@ -23,6 +22,8 @@ from robovoice.audio.wake import (
     resolve_wake_model,
 )
 from robovoice.errors import AudioError, ConfigError
+
+from .audio_clips import CLIPS, Clip, clip
 
 pytestmark = pytest.mark.integration
 

@@ -6,9 +6,10 @@ from collections.abc import AsyncIterator
 from pathlib import Path
 
 import pytest
-from .mcp_testkit import FAST
 
 from robovoice.mcp_server import HttpEndpoint, Robot, RobotSpec, http_server, open_robot
+
+from .mcp_testkit import FAST
 
 
 @pytest.fixture

@@ -13,6 +13,11 @@ import mcp_types as types
 import pytest
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
+
+from robovoice.errors import ConfigError
+from robovoice.manifest import ToolEntry
+from robovoice.mcp_server import HttpEndpoint, Robot, RobotSpec, check_bind, http_server, open_robot
+
 from .mcp_testkit import (
     BOUND_S,
     DRIVING,
@@ -26,10 +31,6 @@ from .mcp_testkit import (
     host_lamp,
     wait_for_message,
 )
-
-from robovoice.errors import ConfigError
-from robovoice.manifest import ToolEntry
-from robovoice.mcp_server import HttpEndpoint, Robot, RobotSpec, check_bind, http_server, open_robot
 
 MODES = ["legacy", "auto"]
 

@@ -14,12 +14,13 @@ from pathlib import Path
 import mcp_types as types
 import pytest
 from mcp import Client
-from .mcp_testkit import SIM_TOOLS, Lamp, Notifications, body, host_lamp, lamp_manifest
 
 from robovoice.errors import ConfigError
 from robovoice.mcp_server import AuditLog, RobotSpec, RobotToolServer, open_embedded_robot, open_robot
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.snapshot import SnapshotStore
+
+from .mcp_testkit import SIM_TOOLS, Lamp, Notifications, body, host_lamp, lamp_manifest
 
 
 @dataclass

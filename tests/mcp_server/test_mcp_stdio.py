@@ -11,6 +11,7 @@ import mcp_types as types
 import pytest
 from mcp import Client
 from mcp.client.stdio import StdioServerParameters
+
 from .mcp_testkit import BOUND_S, DRIVING, FAST, SIM_TOOLS, Progress, body
 
 

@@ -5,10 +5,11 @@ from __future__ import annotations
 from collections.abc import AsyncIterator, Awaitable, Callable, Collection
 
 import pytest
-from .sim_testkit import SPEED, FeedbackLog, Inbox, StartRobot
 
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim import SimClock, SimRobot, start_sim_robot
+
+from .sim_testkit import SPEED, FeedbackLog, Inbox, StartRobot
 
 
 @pytest.fixture

@@ -5,11 +5,12 @@ from __future__ import annotations
 from typing import Any
 
 import pytest
-from .sim_testkit import BOUND_S, FeedbackLog, StartRobot
 
 from robovoice.errors import InvalidArgumentsError
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim.base import SAFETY_RPCS
+
+from .sim_testkit import BOUND_S, FeedbackLog, StartRobot
 
 
 async def test_set_max_speed_changes_how_fast_the_robot_drives(bus: MemoryMiddleware,

@@ -5,11 +5,12 @@ from __future__ import annotations
 from typing import Any
 
 import pytest
-from .sim_testkit import StartRobot
 
 from robovoice.errors import InvalidArgumentsError, RobotFailure
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim.communication import find_contact
+
+from .sim_testkit import StartRobot
 
 CONTACTS = [{"name": "Anna", "relation": "daughter"}, {"name": "Ben", "relation": "son"},
             {"name": "Clara", "relation": "neighbour"}, {"name": "Dr. Weber", "relation": "family doctor"}]

@@ -6,13 +6,14 @@ import json
 from pathlib import Path
 
 import pytest
-from .sim_testkit import StartRobot
 
 from robovoice.manifest import check_manifest_dir
 from robovoice.manifest.model import Manifest
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim import NODE_NAMES
 from robovoice.sim.node import manifest_path
+
+from .sim_testkit import StartRobot
 
 MANIFEST_DIR = Path(manifest_path("navigation")).parent.parent
 

@@ -6,11 +6,12 @@ import asyncio
 from typing import Any
 
 import pytest
-from .sim_testkit import BOUND_S, FeedbackLog, StartRobot
 
 from robovoice.errors import CancelledByRobotError, InvalidArgumentsError, RobotFailure
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim.world import place
+
+from .sim_testkit import BOUND_S, FeedbackLog, StartRobot
 
 KNOWN = ["kitchen", "living room", "bedroom", "bathroom", "hallway", "front door", "charging dock"]
 

@@ -8,12 +8,13 @@ from collections.abc import Mapping
 from typing import Any
 
 import pytest
-from .sim_testkit import BOUND_S, StartRobot
 
 from robovoice.errors import ConfigError, NodeUnavailableError
 from robovoice.middleware.base import ActionHandler, NodeHost, NodeInfo, RpcHandler
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim import NODE_NAMES, SETUP_NAMES, SimRobot, run_sim_forever, start_sim_robot
+
+from .sim_testkit import BOUND_S, StartRobot
 
 
 async def test_all_nodes_or_the_named_ones(bus: MemoryMiddleware, start: StartRobot) -> None:

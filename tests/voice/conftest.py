@@ -6,11 +6,12 @@ from __future__ import annotations
 from collections.abc import AsyncIterator, Iterator
 
 import pytest
-from .voice_kit import SettableTranscriber, fake_models
 
 from robovoice.llm.fake_server import FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.voice.models import VoiceModels
+
+from .voice_kit import SettableTranscriber, fake_models
 
 
 @pytest.fixture(scope="session")

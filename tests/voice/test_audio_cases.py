@@ -7,7 +7,6 @@ import wave
 from pathlib import Path
 
 import pytest
-from .voice_kit import DATA, keyword_router
 
 from robovoice.assistant.connect import RobotTarget, open_robot
 from robovoice.eval.cases import load_cases
@@ -16,6 +15,8 @@ from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.voice.evaluation import open_clip_runner
 from robovoice.voice.models import VoiceModels
+
+from .voice_kit import DATA, keyword_router
 
 CASES = DATA / "eval" / "audio.jsonl"
 

@@ -10,7 +10,6 @@ import time
 
 import numpy as np
 import pytest
-from .voice_kit import ROOM_ECHO, clip
 
 from robovoice.audio.fakes import ToneSynthesizer
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, as_float32
@@ -20,6 +19,8 @@ from robovoice.voice.frontend import EchoMeter
 from robovoice.voice.inference import ModelExecutor
 from robovoice.voice.room import EchoPath
 from robovoice.voice.speech import SpeechOutput
+
+from .voice_kit import ROOM_ECHO, clip
 
 F32 = MODEL_FORMAT.with_(width=4)
 

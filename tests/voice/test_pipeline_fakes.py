@@ -8,7 +8,6 @@ import wave
 from pathlib import Path
 
 import pytest
-from .voice_kit import SettableTranscriber, babble, fake_models, tone, voice_session, wait_until, wake_command
 
 from robovoice.assistant.events import BackendFailed, ToolCalled, ToolReturned
 from robovoice.llm.base import Deadlines
@@ -30,6 +29,8 @@ from robovoice.voice.events import (
 )
 from robovoice.voice.models import VoiceModels
 from robovoice.voice.vocabulary import STOP_HINT
+
+from .voice_kit import SettableTranscriber, babble, fake_models, tone, voice_session, wait_until, wake_command
 
 pytestmark = pytest.mark.timeout(90)
 

@@ -10,7 +10,6 @@ import wave
 from pathlib import Path
 
 import pytest
-from .voice_kit import TEST_AUDIO, clip, keyword_router, voice_session, wait_until
 
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, silence
 from robovoice.audio.wav import read_wav
@@ -31,6 +30,8 @@ from robovoice.voice.events import (
     WakeWordRejected,
 )
 from robovoice.voice.models import VoiceModels
+
+from .voice_kit import TEST_AUDIO, clip, keyword_router, voice_session, wait_until
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(180)]
 

@@ -9,9 +9,10 @@ import wave
 from pathlib import Path
 
 import pytest
-from .voice_kit import TEST_AUDIO, keyword_router
 
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
+
+from .voice_kit import TEST_AUDIO, keyword_router
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(600)]
 
