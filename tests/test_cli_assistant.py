@@ -17,6 +17,7 @@ from robovoice.llm.fake_server import (
     FakeOpenAIServer,
     RecordedRequest,
     ScriptedCall,
+    ScriptedReply,
     TextReply,
     ToolCallReply,
 )
@@ -44,7 +45,7 @@ async def _run(*args: str, stdin: str = "", timeout: float = 240) -> tuple[int, 
 
 
 async def test_chat_through_a_server_shows_calls_and_answers() -> None:
-    script = [ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
+    script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
               TextReply("I'm in the kitchen now.")]
     async with FakeOpenAIServer(script) as server:
         code, out, err = await _run("chat", "--robot", "sim", "--sim-speed", "50",

@@ -16,6 +16,7 @@ from robovoice.llm.fake_server import (
     Pacing,
     RecordedRequest,
     ScriptedCall,
+    ScriptedReply,
     TextReply,
     ToolCallReply,
 )
@@ -32,7 +33,7 @@ def _backend(server: FakeOpenAIServer) -> OpenAICompatBackend:
 
 async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
     async with open_robot(SIM) as robot:
-        script = [
+        script: list[ScriptedReply] = [
             ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),), arg_chunk_chars=3),
             TextReply("I'm in the kitchen now. Dr. Weber's number is 3.5 metres away, just kidding! Anything else?"),
         ]
@@ -59,7 +60,7 @@ async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
 
 async def test_structured_tool_error_goes_back_and_the_model_recovers() -> None:
     async with open_robot(SIM) as robot:
-        script = [
+        script: list[ScriptedReply] = [
             ToolCallReply((ScriptedCall("navigate_to", {"target": "garage"}),)),
             ToolCallReply((ScriptedCall("get_navigation_targets", {}),)),
             TextReply("I don't know a garage. I can go to the kitchen, the bedroom or the hallway. Which one?"),
@@ -80,7 +81,7 @@ async def test_structured_tool_error_goes_back_and_the_model_recovers() -> None:
 
 async def test_bad_arguments_become_a_tool_error_not_a_call() -> None:
     async with open_robot(SIM) as robot:
-        script = [ToolCallReply((ScriptedCall("set_projector_power", '{"on": "yes please"}'),)),
+        script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("set_projector_power", '{"on": "yes please"}'),)),
                   ToolCallReply((ScriptedCall("set_projector_power", "{not json"),)),
                   TextReply("Sorry, I could not do that.")]
         async with FakeOpenAIServer(script) as server:

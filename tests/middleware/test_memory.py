@@ -3,18 +3,19 @@
 from __future__ import annotations
 
 import asyncio
+from typing import Any
 
 import pytest
 
 from robovoice.errors import CallTimeoutError, NodeUnavailableError, RobotFailure, UnsupportedURIError
 from robovoice.middleware import open_middleware
-from robovoice.middleware.base import Feedback, Message, NodeInfo, NodeJoined, NodeLeft, RpcInfo
+from robovoice.middleware.base import Feedback, FeedbackSender, Message, NodeInfo, NodeJoined, NodeLeft, RpcInfo
 from robovoice.middleware.memory import MemoryMiddleware
 
 INFO = NodeInfo("echo", rpcs=(RpcInfo("echo", params=("text",)), RpcInfo("count", "action", ("n",))))
 
 
-async def _echo(args: dict) -> dict:
+async def _echo(args: dict[str, Any]) -> dict[str, Any]:
     if args.get("text") == "fail":
         raise RobotFailure("asked to fail", code="unknown_target", hint="h", details={"k": 1})
     if args.get("text") == "bug":
@@ -24,13 +25,13 @@ async def _echo(args: dict) -> dict:
     return {"echo": args["text"]}
 
 
-async def _count(args: dict, feedback) -> int:
+async def _count(args: dict[str, Any], feedback: FeedbackSender) -> int:
     for i in range(args["n"]):
         await feedback(Feedback(progress=i + 1, total=args["n"]))
         await asyncio.sleep(0)
     if args.get("block"):
         await asyncio.Event().wait()
-    return args["n"]
+    return int(args["n"])
 
 
 @pytest.fixture
@@ -86,7 +87,7 @@ async def test_cancelling_caller_cancels_node_work(bus: MemoryMiddleware) -> Non
     started = asyncio.Event()
     cancelled = asyncio.Event()
 
-    async def drive(args: dict, feedback) -> None:
+    async def drive(args: dict[str, Any], feedback: FeedbackSender) -> None:
         started.set()
         try:
             await asyncio.Event().wait()
