@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up robovoice on a fresh Debian 12 machine, idempotently:
-#   1. Debian packages (PortAudio for live audio, espeak-ng + sox for test clips, Node.js for the
-#      MCP conformance suite),
+#   1. Debian packages (PortAudio for live audio, espeak-ng + sox for test clips, djpeg for the
+#      camera JPEG tests, Node.js for the MCP conformance suite), then a check that each is there,
 #   2. a virtualenv in .venv with robovoice and every extra,
 #   3. llama-cpp-python compiled once per machine (about 5 minutes on 2 cores) and cached as a
 #      wheel under .cache/wheels/<cpu>/ — it is built with -march=native, so the key is the CPU,
@@ -17,7 +17,7 @@ say() { printf '\033[1m[setup]\033[0m %s\n' "$*"; }
 
 # --- 1. Debian packages ----------------------------------------------------------------
 need_apt=()
-for pkg in libportaudio2 espeak-ng sox; do
+for pkg in libportaudio2 espeak-ng sox libjpeg-turbo-progs; do
     dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
 done
 command -v npm >/dev/null 2>&1 || need_apt+=(nodejs npm)
@@ -27,6 +27,16 @@ if [ ${#need_apt[@]} -gt 0 ]; then
     SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
     $SUDO apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq "${need_apt[@]}" >/dev/null
+fi
+# The tests use these programs and fail (never skip) without them: check here, by name.
+missing=()
+for cmd in espeak-ng sox djpeg npm; do
+    command -v "$cmd" >/dev/null 2>&1 || missing+=("$cmd")
+done
+dpkg -s libportaudio2 >/dev/null 2>&1 || missing+=(libportaudio2)
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "setup: still missing after the Debian install step: ${missing[*]}" >&2
+    exit 1
 fi
 
 # --- 2. virtualenv ---------------------------------------------------------------------

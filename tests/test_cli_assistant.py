@@ -21,13 +21,10 @@ from robovoice.llm.fake_server import (
     TextReply,
     ToolCallReply,
 )
-from robovoice.llm.local import llama_cpp_available
-from robovoice.llm.model_store import default_model_ready
 
 ROBOVOICE = [sys.executable, "-m", "robovoice.cli"]
 DATA = Path(__file__).parent / "data" / "eval"
-needs_model = pytest.mark.skipif(not (llama_cpp_available() and default_model_ready()),
-                                 reason="needs llama-cpp-python and the model parts (scripts/setup.sh)")
+needs_model = pytest.mark.usefixtures("local_model_installed")  # tests/conftest.py: fails, never skips
 
 
 def _dead_port() -> int:

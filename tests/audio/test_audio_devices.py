@@ -16,6 +16,8 @@ from robovoice.audio.format import MODEL_FORMAT, PIPER_FORMAT, AudioChunk, Audio
 from robovoice.audio.streams import AudioSink, AudioSource
 from robovoice.errors import AudioError, MissingDependencyError
 
+from ..installed import missing
+
 
 class FakeInputStream:
     """Calls the callback from its own thread with consecutive blocks, like PortAudio."""
@@ -190,9 +192,9 @@ def test_opening_a_real_device_without_one_is_an_audio_error() -> None:
     try:
         sd = import_sounddevice()
     except MissingDependencyError:
-        pytest.skip("PortAudio not installed")
+        missing("PortAudio", "Debian package libportaudio2")
     if len(sd.query_devices()) > 0:
-        pytest.skip("this machine has audio devices")
+        pytest.skip("this machine has audio devices")  # about the machine, not a missing install
     mic = MicrophoneSource()
 
     async def open_it() -> None:

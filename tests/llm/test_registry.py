@@ -8,11 +8,11 @@ import pytest
 
 from robovoice.errors import ConfigError
 from robovoice.llm.failover import FailoverBackend
-from robovoice.llm.local import LocalLlamaBackend, llama_cpp_available
+from robovoice.llm.local import LocalLlamaBackend
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.llm.registry import BackendSpec, api_key_from, backend_from_spec, chain_from_specs
 
-needs_llama = pytest.mark.skipif(not llama_cpp_available(), reason="llama-cpp-python not installed")
+needs_llama = pytest.mark.usefixtures("llama_installed")
 
 
 async def test_http_spec_with_model_after_hash() -> None:

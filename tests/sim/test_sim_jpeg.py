@@ -3,15 +3,12 @@
 from __future__ import annotations
 
 import base64
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 
 from robovoice.sim import frames, jpeg
-
-DJPEG = shutil.which("djpeg")
 
 
 def _gradient(width: int, height: int) -> bytes:
@@ -34,36 +31,33 @@ def test_bad_input_is_refused() -> None:
         jpeg.quant_table(0)
 
 
-def _decode(path: Path) -> tuple[int, int, bytes]:
-    assert DJPEG is not None
-    out = subprocess.run([DJPEG, "-pnm", str(path)], capture_output=True, check=True).stdout
+def _decode(djpeg: str, path: Path) -> tuple[int, int, bytes]:
+    out = subprocess.run([djpeg, "-pnm", str(path)], capture_output=True, check=True).stdout
     magic, size, maxval, pixels = out.split(b"\n", 3)
     assert magic == b"P5" and maxval == b"255"  # one gray channel
     width, height = map(int, size.split())
     return width, height, pixels
 
 
-@pytest.mark.skipif(DJPEG is None, reason="djpeg not installed (apt-get install libjpeg-turbo-progs)")
 @pytest.mark.parametrize(("width", "height"), [(160, 120), (37, 21)])
-def test_djpeg_decodes_what_we_encode(tmp_path: Path, width: int, height: int) -> None:
+def test_djpeg_decodes_what_we_encode(djpeg: str, tmp_path: Path, width: int, height: int) -> None:
     pixels = _gradient(width, height)
     path = tmp_path / "frame.jpg"
     path.write_bytes(jpeg.encode_gray(pixels, width, height, quality=90))
-    got_w, got_h, decoded = _decode(path)
+    got_w, got_h, decoded = _decode(djpeg, path)
     assert (got_w, got_h) == (width, height)
     mean_error = sum(abs(a - b) for a, b in zip(decoded, pixels, strict=True)) / len(pixels)
     assert mean_error < 4
 
 
-@pytest.mark.skipif(DJPEG is None, reason="djpeg not installed (apt-get install libjpeg-turbo-progs)")
-def test_camera_frames_decode_and_follow_the_view(tmp_path: Path) -> None:
+def test_camera_frames_decode_and_follow_the_view(djpeg: str, tmp_path: Path) -> None:
     kitchen = frames.render_jpeg(frames.View.of("kitchen", 90))
     kitchen_west = frames.render_jpeg(frames.View.of("kitchen", 180))
     bedroom = frames.render_jpeg(frames.View.of("bedroom", 90))
     assert len({kitchen, kitchen_west, bedroom}) == 3
     path = tmp_path / "kitchen.jpg"
     path.write_bytes(kitchen)
-    width, height, decoded = _decode(path)
+    width, height, decoded = _decode(djpeg, path)
     assert (width, height) == (frames.WIDTH, frames.HEIGHT)
     # the sign with the name is light, its letters dark: both shades are in the picture
     sign_rows = decoded[28 * width:42 * width]

@@ -121,6 +121,8 @@ async def _child(argv: list[str], ready: str) -> AsyncIterator[subprocess.Popen[
         except subprocess.TimeoutExpired:
             proc.kill()
             await asyncio.to_thread(proc.wait, 5)
+        if proc.stdout is not None:
+            proc.stdout.close()
 
 
 async def _interleaved(rounds: int, *runs: Callable[[], Awaitable[float]]) -> list[list[float]]:
