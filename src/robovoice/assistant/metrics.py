@@ -8,8 +8,9 @@ rest of a turn can be reported as our own overhead.
 
 from __future__ import annotations
 
+import statistics
 import time
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 
@@ -42,15 +43,20 @@ class TurnMetrics:
         return out
 
 
-def percentile(values: list[float], q: float) -> float:
-    """Nearest-rank style percentile with linear interpolation (q in 0..100)."""
+def percentile(values: Sequence[float], q: int) -> float:
+    """The q-th percentile (q in 0..100), interpolating linearly between the closest ranks.
+
+    This is `statistics.quantiles(values, n=100, method="inclusive")` (numpy's default
+    ``linear`` method), plus the ends: q=0 is the minimum, q=100 the maximum, and one value is
+    every percentile of itself.
+    """
     if not values:
         raise ValueError("no values")
-    ordered = sorted(values)
-    rank = (len(ordered) - 1) * q / 100.0
-    low = int(rank)
-    high = min(low + 1, len(ordered) - 1)
-    return ordered[low] + (ordered[high] - ordered[low]) * (rank - low)
+    if not 0 <= q <= 100:
+        raise ValueError(f"percentile must be in 0..100, got {q}")
+    if len(values) == 1 or q in (0, 100):
+        return float(min(values) if q == 0 else max(values))
+    return statistics.quantiles(values, n=100, method="inclusive")[q - 1]
 
 
 def summarise(per_turn: Iterable[Mapping[str, float]]) -> dict[str, dict[str, float]]:
