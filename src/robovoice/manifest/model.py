@@ -12,6 +12,8 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from robovoice.manifest.ros2_model import Ros2SnapshotBinding, Ros2ToolBinding
+
 TOOL_NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_\-]{0,63}$"
 
 EMPTY_OBJECT_SCHEMA: dict[str, Any] = {"type": "object", "properties": {}, "additionalProperties": False}
@@ -60,6 +62,10 @@ class ToolDecl(_Strict):
     timeout_s: float | None = Field(
         default=None, gt=0, description="call timeout; default 10 s for RPCs, 300 s for actions"
     )
+    ros2: Ros2ToolBinding | None = Field(
+        default=None, description="ros2:// only: the ROS 2 service or action (named by `rpc`) and its type; "
+        "the parameters are derived from the type (docs/ros2.md)"
+    )
 
 
 class SnapshotDecl(_Strict):
@@ -69,6 +75,9 @@ class SnapshotDecl(_Strict):
     topic: str = Field(min_length=1, description="the topic the node publishes")
     description: str = Field(min_length=1, description="what the snapshot tells, for the model")
     max_age_s: float = Field(gt=0, description="older than this, the snapshot is flagged stale")
+    ros2: Ros2SnapshotBinding | None = Field(
+        default=None, description="ros2:// only: the ROS 2 message type of the topic (docs/ros2.md)"
+    )
 
 
 class Manifest(_Strict):

@@ -21,7 +21,13 @@ def _zenoh(uri: str) -> Middleware:
     return ZenohMiddleware.from_uri(uri)
 
 
-ADAPTERS: dict[str, Callable[[str], Middleware]] = {"memory": _memory, "zenoh": _zenoh}
+def _ros2(uri: str) -> Middleware:
+    from robovoice.middleware.ros2 import Ros2Middleware  # needs the [ros2] extra
+
+    return Ros2Middleware.from_uri(uri)
+
+
+ADAPTERS: dict[str, Callable[[str], Middleware]] = {"memory": _memory, "zenoh": _zenoh, "ros2": _ros2}
 
 
 def open_middleware(uri: str) -> Middleware:

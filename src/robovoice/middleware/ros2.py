@@ -1,0 +1,157 @@
+"""`ros2://`: a robot that runs ROS 2, reached through rclpy (docs/ros2.md).
+
+The robot's nodes know nothing of robovoice: a folder of manifests (``manifests=DIR`` in the
+URI) binds tools to the ROS 2 services and actions they already offer and snapshots to their
+topics. Each manifest is one robovoice *node*; it is present while every service, action
+server and topic publisher it names is in the ROS graph (`ros2_presence`), and it announces
+itself with the manifest the MCP server uses, its input schemas derived from the ROS types
+(`ros2_bindings`). Module map: `ros2_config` (URIs), `ros2_types` (JSON ⇄ messages, schemas),
+`ros2_bindings` (manifests → bindings), `ros2_bridge` (the rclpy thread → event loop),
+`ros2_presence` (the graph), `ros2_calls` (services and actions), this module.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from robovoice.errors import ConfigError, MissingDependencyError, NodeUnavailableError
+
+try:
+    import rclpy  # noqa: F401  # the guarded import: the rest of the ros2_* modules need it
+except ImportError as exc:  # pragma: no cover - depends on the install
+    raise MissingDependencyError("the ROS 2 middleware", "pip install 'robovoice[ros2]'") from exc
+
+import asyncio
+
+from robovoice.manifest import format_error, load_manifest_dir
+from robovoice.manifest.errors import ManifestErrors
+from robovoice.middleware.base import (
+    JSON,
+    ActionHandler,
+    FeedbackSender,
+    Message,
+    NodeHost,
+    NodeInfo,
+    PresenceEvent,
+    RpcHandler,
+)
+from robovoice.middleware.ros2_bindings import NodeBinding, compile_manifest
+from robovoice.middleware.ros2_bridge import RosBridge
+from robovoice.middleware.ros2_calls import Ros2Calls
+from robovoice.middleware.ros2_config import Ros2Settings
+from robovoice.middleware.ros2_presence import GraphPresence, PresenceWatch
+from robovoice.middleware.ros2_topics import TopicSubscription, subscribe_topic
+
+log = logging.getLogger(__name__)
+
+
+def load_bindings(settings: Ros2Settings) -> dict[str, NodeBinding]:
+    """Compile the manifest folder of `settings`; bad files are logged (their nodes expose
+    nothing), and a folder with no good manifest at all is a `ConfigError` listing why."""
+    if settings.manifests is None:
+        return {}
+    loaded = load_manifest_dir(settings.manifests)
+    errors = list(loaded.errors)
+    bindings: dict[str, NodeBinding] = {}
+    for node, manifest in loaded.manifests.items():
+        try:
+            bindings[node] = compile_manifest(manifest)
+        except ManifestErrors as exc:
+            errors.extend(exc.errors)
+    if errors and not bindings:
+        raise ConfigError("; ".join(format_error(e) for e in errors))
+    for error in errors:
+        log.warning("manifest not used: %s", format_error(error))
+    return bindings
+
+
+class Ros2Middleware:
+    """The `Middleware` over rclpy (see the module docstring)."""
+
+    def __init__(self, settings: Ros2Settings) -> None:
+        self._settings = settings
+        self._bindings = load_bindings(settings)
+        self._bridge: RosBridge | None = None
+        self._presence: GraphPresence | None = None
+        self._calls: Ros2Calls | None = None
+
+    @classmethod
+    def from_uri(cls, uri: str) -> Ros2Middleware:
+        return cls(Ros2Settings.from_uri(uri))
+
+    @property
+    def uri(self) -> str:
+        return self._settings.uri
+
+    @property
+    def bindings(self) -> Mapping[str, NodeBinding]:
+        return self._bindings
+
+    async def start(self) -> None:
+        if self._bridge is not None:
+            return
+        loop = asyncio.get_running_loop()
+        self._bridge = await asyncio.to_thread(RosBridge, self._settings, loop)
+        self._presence = GraphPresence(self._bridge, self._bindings)
+        self._presence.start()
+        self._calls = Ros2Calls(self._bridge, self._presence)
+
+    async def close(self) -> None:
+        bridge, self._bridge = self._bridge, None
+        if self._presence is not None:
+            await self._presence.stop()
+            self._presence = None
+        if self._calls is not None:
+            self._calls.close()
+            self._calls = None
+        if bridge is not None:
+            await asyncio.to_thread(bridge.close)
+
+    def _running(self) -> tuple[RosBridge, GraphPresence, Ros2Calls]:
+        if self._bridge is None or self._presence is None or self._calls is None:
+            raise ConfigError(f"{self.uri}: the middleware is not started")
+        return self._bridge, self._presence, self._calls
+
+    # --- node side ------------------------------------------------------------------------
+    async def host(self, info: NodeInfo, rpcs: Mapping[str, RpcHandler],
+                   actions: Mapping[str, ActionHandler]) -> NodeHost:
+        raise ConfigError(
+            f"{self.uri}: robovoice does not host its own nodes on ROS 2; run the robot's ROS 2 nodes "
+            "and bind them with a manifest folder (ros2://?manifests=DIR, docs/ros2.md)"
+        )
+
+    # --- client side ----------------------------------------------------------------------
+    def _binding(self, node: str, rpc: str) -> Any:
+        _, presence, _ = self._running()
+        found = self._bindings.get(node)
+        binding = found.tools.get(rpc) if found is not None else None
+        if binding is None or not presence.is_present(node):
+            raise NodeUnavailableError(
+                f"node {node!r} is not available", hint="the robot part is offline; tell the user",
+                details={"node": node, "rpc": rpc})
+        return binding
+
+    async def call(self, node: str, rpc: str, args: Mapping[str, JSON], *, timeout: float) -> JSON:
+        binding = self._binding(node, rpc)
+        return await self._running()[2].call(node, binding, args, timeout=timeout)
+
+    async def run_action(self, node: str, action: str, args: Mapping[str, JSON], *,
+                         on_feedback: FeedbackSender, timeout: float) -> JSON:
+        binding = self._binding(node, action)
+        return await self._running()[2].run_action(node, binding, args, on_feedback=on_feedback,
+                                                   timeout=timeout)
+
+    async def subscribe(self, topic: str, callback: Callable[[Message], None]) -> TopicSubscription:
+        bridge, _, _ = self._running()
+        snapshot = next((n.snapshots[topic] for n in self._bindings.values() if topic in n.snapshots), None)
+        return subscribe_topic(bridge, topic, snapshot, callback)
+
+    def nodes(self) -> Mapping[str, NodeInfo]:
+        if self._presence is None:
+            return {}
+        return self._presence.nodes()
+
+    async def watch(self, callback: Callable[[PresenceEvent], None]) -> PresenceWatch:
+        return self._running()[1].watch(callback)

@@ -1,0 +1,132 @@
+"""rclpy in its own thread, bridged into asyncio in one place.
+
+`RosBridge` owns one rclpy `Context` (initialised for the adapter's domain, never the global
+one, so several adapters can live in one process), one node, and a `MultiThreadedExecutor`
+spinning in a daemon thread. Everything the executor thread hands to the event loop goes
+through `post` (``loop.call_soon_threadsafe``); `wait` turns an rclpy future into an awaitable.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import itertools
+import logging
+import os
+import tempfile
+import threading
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from robovoice.errors import MiddlewareError
+from robovoice.middleware.ros2_config import Ros2Settings, fastdds_profile
+
+import rclpy  # isort: skip  # after the guarded import in ros2.py
+from rclpy.callback_groups import ReentrantCallbackGroup
+from rclpy.context import Context
+from rclpy.executors import MultiThreadedExecutor
+from rclpy.node import Node
+from rclpy.task import Future
+
+log = logging.getLogger(__name__)
+
+EXECUTOR_THREADS = 4
+_ENV_LOCK = threading.Lock()
+_names = itertools.count(1)
+
+
+def prepare_environment(settings: Ros2Settings) -> None:
+    """Set the variables rcl and Fast DDS read when a context and its participant start.
+
+    The profile file with a short lease is set only when the process has none: a user's own
+    ``FASTDDS_DEFAULT_PROFILES_FILE`` wins."""
+    os.environ.update(settings.environment())
+    if settings.lease_s > 0 and "FASTDDS_DEFAULT_PROFILES_FILE" not in os.environ:
+        os.environ["FASTDDS_DEFAULT_PROFILES_FILE"] = str(write_profile(settings.lease_s))
+
+
+def write_profile(lease_s: float) -> Path:
+    """The short-lease Fast DDS profile as a file (one per lease value, reused)."""
+    path = Path(tempfile.gettempdir()) / f"robovoice-fastdds-lease-{lease_s:g}s-{os.getuid()}.xml"
+    text = fastdds_profile(lease_s)
+    if not path.exists() or path.read_text(encoding="utf-8") != text:
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(text, encoding="utf-8")
+        tmp.replace(path)
+    return path
+
+
+class RosBridge:
+    """One rclpy context + node + executor thread, and the way back into the event loop."""
+
+    def __init__(self, settings: Ros2Settings, loop: asyncio.AbstractEventLoop) -> None:
+        self._settings = settings
+        self._loop = loop
+        self._closed = False
+        with _ENV_LOCK:  # rcl reads the environment during init
+            prepare_environment(settings)
+            self.context = Context()
+            try:
+                rclpy.init(context=self.context, domain_id=settings.domain_id)
+            except Exception as exc:
+                raise MiddlewareError(f"{settings.uri}: cannot start ROS 2: {exc}") from exc
+        try:
+            self.node: Node = rclpy.create_node(
+                f"robovoice_{os.getpid()}_{next(_names)}", context=self.context,
+                enable_rosout=False, start_parameter_services=False,
+            )
+        except Exception as exc:
+            self.context.try_shutdown()
+            raise MiddlewareError(f"{settings.uri}: cannot create the ROS 2 node: {exc}") from exc
+        self.group = ReentrantCallbackGroup()
+        self._executor = MultiThreadedExecutor(num_threads=EXECUTOR_THREADS, context=self.context)
+        self._executor.add_node(self.node)
+        self._thread = threading.Thread(target=self._spin, name="robovoice-rclpy", daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        try:
+            self._executor.spin()
+        except Exception:  # the context was shut down under it, or a bug: either way, say so
+            if not self._closed:
+                log.exception("the rclpy executor stopped")
+
+    @property
+    def loop(self) -> asyncio.AbstractEventLoop:
+        return self._loop
+
+    def post(self, fn: Callable[..., object], *args: object) -> None:
+        """Run `fn(*args)` on the event loop (from any thread); dropped once the loop is closed."""
+        if self._loop.is_closed():
+            return
+        with contextlib.suppress(RuntimeError):  # the loop closed meanwhile
+            self._loop.call_soon_threadsafe(fn, *args)
+
+    def wait(self, future: Future[Any]) -> asyncio.Future[Any]:
+        """An asyncio future settled (on the loop) when the rclpy `future` is done."""
+        waiter: asyncio.Future[Any] = self._loop.create_future()
+
+        def settle(done: Future[Any]) -> None:
+            if waiter.done():
+                return
+            if done.cancelled():
+                waiter.cancel()
+            elif done.exception() is not None:
+                waiter.set_exception(done.exception())  # type: ignore[arg-type]  # checked not None
+            else:
+                waiter.set_result(done.result())
+
+        future.add_done_callback(lambda done: self.post(settle, done))
+        return waiter
+
+    def close(self) -> None:
+        if self._closed:
+            return
+        self._closed = True
+        self._executor.shutdown(timeout_sec=2.0)
+        try:
+            self.node.destroy_node()
+        finally:
+            self.context.try_shutdown()
+        self._thread.join(timeout=2.0)

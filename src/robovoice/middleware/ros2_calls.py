@@ -1,0 +1,196 @@
+"""Service calls and action goals over rclpy, each with a timeout, and with the server
+watched while waiting: a server that leaves the graph mid-call (``kill -9``) ends the wait
+with `NodeUnavailableError` — rclpy itself would wait for a result forever.
+
+Clients are made once per interface, with queues 100 deep (rclpy's default of 10 drops
+concurrent calls) on a reentrant callback group.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import itertools
+import logging
+import time
+from collections.abc import Iterator, Mapping
+from typing import Any
+
+from robovoice.errors import CallTimeoutError, CancelledByRobotError, NodeUnavailableError, RobotFailure
+from robovoice.middleware.base import JSON, Feedback, FeedbackSender
+from robovoice.middleware.ros2_bindings import ToolBinding
+from robovoice.middleware.ros2_bridge import RosBridge
+from robovoice.middleware.ros2_presence import GraphPresence
+from robovoice.middleware.ros2_types import to_json
+
+from action_msgs.msg import GoalStatus  # isort: skip
+from rclpy.action.client import ActionClient
+from rclpy.client import Client
+from rclpy.qos import QoSProfile
+
+log = logging.getLogger(__name__)
+
+QUEUE_DEPTH = 100
+WATCH_S = 0.2
+"""While waiting for a response, how often the server's presence in the graph is checked."""
+CANCEL_WAIT_S = 2.0
+
+
+class Ros2Calls:
+    """The client side of services and actions for one `RosBridge`."""
+
+    def __init__(self, bridge: RosBridge, presence: GraphPresence) -> None:
+        self._bridge = bridge
+        self._presence = presence
+        self._clients: dict[tuple[str, str], Client[Any, Any]] = {}
+        self._actions: dict[tuple[str, str], ActionClient[Any, Any, Any]] = {}
+
+    def close(self) -> None:
+        for client in self._clients.values():
+            self._bridge.node.destroy_client(client)
+        for action in self._actions.values():
+            action.destroy()
+        self._clients.clear()
+        self._actions.clear()
+
+    def _client(self, binding: ToolBinding) -> Client[Any, Any]:
+        key = (binding.ros_name, binding.type_name)
+        client = self._clients.get(key)
+        if client is None:
+            client = self._bridge.node.create_client(
+                binding.interface, binding.ros_name, qos_profile=QoSProfile(depth=QUEUE_DEPTH),
+                callback_group=self._bridge.group)
+            self._clients[key] = client
+        return client
+
+    def _action_client(self, binding: ToolBinding) -> ActionClient[Any, Any, Any]:
+        key = (binding.ros_name, binding.type_name)
+        client = self._actions.get(key)
+        if client is None:
+            qos = QoSProfile(depth=QUEUE_DEPTH)
+            client = ActionClient(
+                self._bridge.node, binding.interface, binding.ros_name, callback_group=self._bridge.group,
+                goal_service_qos_profile=qos, result_service_qos_profile=qos, cancel_service_qos_profile=qos)
+            self._actions[key] = client
+        return client
+
+    async def _await(self, waiter: asyncio.Future[Any], up: Any, node: str, binding: ToolBinding,
+                     deadline: float, what: str) -> Any:
+        """Wait for `waiter` until `deadline`, failing early when the server leaves the graph."""
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise CallTimeoutError(
+                    f"{binding.ros_name} did not answer within the time limit ({what})",
+                    hint="the robot is busy or stuck; tell the user", details={"node": node, "rpc": binding.key})
+            done, _ = await asyncio.wait({waiter}, timeout=min(WATCH_S, left))
+            if done:
+                return waiter.result()
+            if not up(binding.ros_name):
+                raise NodeUnavailableError(
+                    f"{binding.ros_name} went away before answering ({what})",
+                    hint="the robot part went offline; tell the user", details={"node": node, "rpc": binding.key})
+
+    async def call(self, node: str, binding: ToolBinding, args: Mapping[str, JSON], *, timeout: float) -> JSON:
+        request = binding.build_request(args)  # checked before anything is sent
+        client = self._client(binding)
+        deadline = time.monotonic() + timeout
+        future = client.call_async(request)
+        waiter = self._bridge.wait(future)
+        try:
+            response = await self._await(waiter, self._presence.service_up, node, binding, deadline, "service call")
+        except BaseException:
+            waiter.cancel()
+            client.remove_pending_request(future)
+            raise
+        return _outcome(binding, to_json(response), node)
+
+    async def run_action(self, node: str, binding: ToolBinding, args: Mapping[str, JSON], *,
+                         on_feedback: FeedbackSender, timeout: float) -> JSON:
+        goal = binding.build_request(args)
+        client = self._action_client(binding)
+        deadline = time.monotonic() + timeout
+        feedback: asyncio.Queue[dict[str, JSON]] = asyncio.Queue(maxsize=256)
+
+        def arrived(message: Any) -> None:  # on the executor thread
+            data = to_json(message.feedback)
+            self._bridge.post(_offer, feedback, data)
+
+        send = client.send_goal_async(goal, feedback_callback=arrived)
+        handle = await self._await(self._bridge.wait(send), self._presence.action_up, node, binding, deadline,
+                                   "goal")
+        if not handle.accepted:
+            raise RobotFailure(f"{binding.ros_name} rejected the goal", code="goal_rejected",
+                               hint="the robot refused this request; tell the user",
+                               details={"node": node, "rpc": binding.key})
+        counter = itertools.count(1)
+        relay = asyncio.get_running_loop().create_task(_relay(feedback, binding, on_feedback, counter))
+        result_waiter = self._bridge.wait(handle.get_result_async())
+        try:
+            outcome = await self._await(result_waiter, self._presence.action_up, node, binding, deadline, "result")
+        except BaseException:
+            result_waiter.cancel()
+            await self._cancel(handle)
+            raise
+        finally:
+            relay.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await relay
+        while not feedback.empty():  # what arrived before the result, in order
+            await _tell(binding, on_feedback, counter, feedback.get_nowait())
+        return _result(binding, outcome.status, to_json(outcome.result), node)
+
+    async def _cancel(self, handle: Any) -> None:
+        """Ask the server to cancel the goal; bounded, since the server may be gone."""
+        try:
+            async with asyncio.timeout(CANCEL_WAIT_S):
+                await self._bridge.wait(handle.cancel_goal_async())
+        except (TimeoutError, asyncio.CancelledError):
+            log.info("no answer to the cancel request within %g s", CANCEL_WAIT_S)
+        except Exception as exc:  # the goal ended meanwhile, the server is gone...
+            log.info("cancelling the goal failed: %s", exc)
+
+
+def _offer(queue: asyncio.Queue[dict[str, JSON]], data: dict[str, JSON]) -> None:
+    if queue.full():  # a slow consumer: keep the newest feedback
+        queue.get_nowait()
+    queue.put_nowait(data)
+
+
+async def _relay(queue: asyncio.Queue[dict[str, JSON]], binding: ToolBinding, on_feedback: FeedbackSender,
+                 counter: Iterator[int]) -> None:
+    while True:
+        await _tell(binding, on_feedback, counter, await queue.get())
+
+
+async def _tell(binding: ToolBinding, on_feedback: FeedbackSender, counter: Iterator[int],
+                data: dict[str, JSON]) -> None:
+    try:
+        await on_feedback(Feedback(float(next(counter)), None, binding.feedback_text(data), data))
+    except Exception:  # a failing progress report must not end the action
+        log.exception("feedback callback failed")
+
+
+def _outcome(binding: ToolBinding, value: JSON, node: str) -> JSON:
+    """The response as the tool's result; a false `success_field` is a robot failure."""
+    if binding.success_field is not None and isinstance(value, dict):
+        current: Any = value
+        for part in binding.success_field.split("."):
+            current = current.get(part) if isinstance(current, dict) else None
+        if current is False:
+            message = value.get("message") if isinstance(value.get("message"), str) else None
+            raise RobotFailure(message or f"{binding.ros_name} reported failure", code="robot_error",
+                               hint="the robot could not do it; tell the user why",
+                               details={"node": node, "rpc": binding.key, "response": value})
+    return value
+
+
+def _result(binding: ToolBinding, status: int, value: JSON, node: str) -> JSON:
+    details = {"node": node, "rpc": binding.key, "result": value}
+    if status == GoalStatus.STATUS_SUCCEEDED:
+        return _outcome(binding, value, node)
+    if status == GoalStatus.STATUS_CANCELED:
+        raise CancelledByRobotError(f"{binding.ros_name}: the goal was cancelled",
+                                    hint="the task was stopped before it finished", details=details)
+    raise RobotFailure(f"{binding.ros_name}: the goal was aborted", code="aborted",
+                       hint="the robot could not finish it; tell the user", details=details)
