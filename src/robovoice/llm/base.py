@@ -16,8 +16,7 @@ from __future__ import annotations
 
 import base64
 import json
-from collections.abc import AsyncIterator, Mapping, Sequence
-from contextlib import asynccontextmanager
+from collections.abc import AsyncGenerator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal, Protocol, runtime_checkable
 
@@ -134,17 +133,6 @@ class ToolSpec:
         return {"type": "function", "function": function}
 
 
-@asynccontextmanager
-async def closing_stream(events: AsyncIterator[LLMEvent]) -> AsyncIterator[AsyncIterator[LLMEvent]]:
-    """Like `contextlib.aclosing` for a backend's stream: closes it (if it can be) on exit."""
-    try:
-        yield events
-    finally:
-        aclose = getattr(events, "aclose", None)
-        if aclose is not None:
-            await aclose()
-
-
 def has_audio(messages: Sequence[ChatMessage]) -> bool:
     return any(m.has_audio for m in messages)
 
@@ -243,6 +231,6 @@ class LLMBackend(Protocol):
         """True if the model takes `AudioPart` content (``input_audio``)."""
         ...
 
-    def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> AsyncIterator[LLMEvent]: ...
+    def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> AsyncGenerator[LLMEvent, None]: ...
 
     async def aclose(self) -> None: ...

@@ -18,13 +18,14 @@ duplicate speech or tool calls.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import time
-from collections.abc import AsyncIterator, Callable, Sequence
+from collections.abc import AsyncGenerator, Callable, Sequence
 from dataclasses import dataclass
 
 from robovoice.errors import BackendUnavailableError, ConfigError, LLMError
-from robovoice.llm.base import ChatMessage, LLMBackend, LLMEvent, ToolSpec, closing_stream, has_audio
+from robovoice.llm.base import ChatMessage, LLMBackend, LLMEvent, ToolSpec, has_audio
 
 log = logging.getLogger(__name__)
 
@@ -151,10 +152,12 @@ class FailoverBackend:
             ready.append(soonest)
         return ready
 
-    async def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> AsyncIterator[LLMEvent]:
+    async def stream(
+        self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
+    ) -> AsyncGenerator[LLMEvent, None]:
         reasons: dict[str, str] = {}
         for backend in self._candidates(has_audio(messages), reasons):
-            async with closing_stream(backend.stream(messages, tools)) as events:
+            async with contextlib.aclosing(backend.stream(messages, tools)) as events:
                 try:
                     async with asyncio.timeout(self.first_event_timeout_s):
                         first = await anext(events)

@@ -31,7 +31,7 @@ import logging
 import os
 import threading
 import time
-from collections.abc import AsyncIterator, Callable, Iterator, Sequence
+from collections.abc import AsyncGenerator, AsyncIterator, Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -439,7 +439,9 @@ class LocalLlamaBackend:
         if self._llama is not None:
             await asyncio.get_running_loop().run_in_executor(self._executor, self._llama.reset)
 
-    async def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> AsyncIterator[LLMEvent]:
+    async def stream(
+        self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
+    ) -> AsyncGenerator[LLMEvent, None]:
         if any(m.has_audio for m in messages):
             raise LLMError(f"{self.name} takes text only; transcribe the audio first")
         async for event in self._run(self._job(messages, tools)):

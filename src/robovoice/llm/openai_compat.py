@@ -233,7 +233,9 @@ class OpenAICompatBackend:
         body.update(self.extra_body)
         return body
 
-    async def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> AsyncIterator[LLMEvent]:
+    async def stream(
+        self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
+    ) -> AsyncGenerator[LLMEvent, None]:
         if has_audio(messages) and not self.accepts_audio:
             raise LLMError(f"{self.name} does not accept audio input (accepts_audio is off)")
         d = self.deadlines
