@@ -1,0 +1,95 @@
+"""`robovoice console`: the robot console in the browser (docs/console.md).
+
+    robovoice console                                  # the embedded sim robot, http://127.0.0.1:8780/
+    robovoice console --robot http://robot:8765/mcp --robot-token-file robot.token
+    robovoice console --host 0.0.0.0 --token-file console.token   # reachable from other machines
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import sys
+from pathlib import Path
+from typing import Any
+
+from robovoice.commands.common import add_llm_args, backend_from_args, config_from_args, warm_up
+from robovoice.commands.signals import CancelOnSignals
+from robovoice.config import Config, RobotConfig
+from robovoice.errors import ConfigError
+
+DEFAULT_PORT = 8780
+
+
+def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is private
+    console = subparsers.add_parser(
+        "console", help="the robot console in the browser: watch, talk, call tools by hand",
+        description="Serves one page: the robot live on its map, the conversation with every tool call, "
+                    "talking through the browser's microphone, tools by hand, the audit log; and its API "
+                    "(docs/console.md). Same security as `serve --transport http`.")
+    robot = console.add_argument_group("robot (default: [robot] address of the config, else sim://)")
+    robot.add_argument("--robot", metavar="ADDR", help="sim://, a middleware URI, http(s)://host:port/mcp or stdio:CMD")
+    robot.add_argument("--manifests", type=Path, metavar="DIR", help="manifest folder (robots served here)")
+    robot.add_argument("--robot-token-file", type=Path, metavar="F", help="bearer token of an http(s) robot")
+    web = console.add_argument_group("the page")
+    web.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
+    web.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"port (default {DEFAULT_PORT}; 0: any free one)")
+    web.add_argument("--token-file", type=Path, metavar="F",
+                     help="bearer token the page and API require (needed for a non-loopback --host)")
+    web.add_argument("--allowed-host", action="append", default=[], metavar="NAME",
+                     help="a further Host/Origin name clients use to reach the console (repeatable)")
+    web.add_argument("--no-voice", action="store_true", help="no microphone or speech (no voice models loaded)")
+    add_llm_args(console)
+    console.set_defaults(run=run_console_command)
+
+
+def robot_config(args: argparse.Namespace, config: Config) -> RobotConfig:
+    base = config.robot
+    if args.robot is None and args.manifests is None and args.robot_token_file is None:
+        return base
+    return RobotConfig(address=args.robot or base.address, manifests=args.manifests or base.manifests,
+                       token_file=args.robot_token_file or base.token_file)
+
+
+def run_console_command(args: argparse.Namespace) -> int:
+    return asyncio.run(_console(args))
+
+
+async def _console(args: argparse.Namespace) -> int:
+    from robovoice.assistant.connect import connect_robot
+    from robovoice.console.serve import check_console_bind, console_server
+    from robovoice.console.service import Console
+    from robovoice.mcp_server.http import read_token_file
+
+    config = config_from_args(args)
+    token = read_token_file(args.token_file) if args.token_file else None
+    check_console_bind(args.host, token)  # before anything is loaded
+    robot = robot_config(args, config)
+    backend = backend_from_args(args, config)
+    try:
+        async with connect_robot(robot) as connection:
+            voice = None if args.no_voice else _voice_bridge(config, backend, connection.tools)
+            console = Console(connection.tools, backend, voice=voice, robot_name=robot.address)
+            await warm_up(backend, await connection.tools.specs())
+            async with console_server(console, host=args.host, port=args.port, token=token,
+                                      allowed_hosts=args.allowed_host) as endpoint:
+                print(f"robovoice console: {endpoint.url}  (robot {robot.address}, model {backend.name}"
+                      f"{', voice models loading' if voice else ', no voice'}; Ctrl-C to end)", file=sys.stderr,
+                      flush=True)
+                with CancelOnSignals():
+                    await console.run()
+    finally:
+        await backend.aclose()
+    return 0
+
+
+def _voice_bridge(config: Config, backend: Any, tools: Any) -> Any:
+    from robovoice.console.voice import VoiceBridge
+
+    try:
+        from robovoice.voice.models import load_voice_models
+    except ImportError as exc:
+        raise ConfigError(f"the console's voice needs the voice extra (pip install 'robovoice[voice]'), "
+                          f"or run it with --no-voice ({exc})") from exc
+    voice = config.voice
+    return VoiceBridge(lambda: load_voice_models(wake_model=voice.wake_model, stt=voice.stt), backend, tools)
