@@ -17,7 +17,7 @@ say() { printf '\033[1m[setup]\033[0m %s\n' "$*"; }
 
 # --- 1. Debian packages ----------------------------------------------------------------
 need_apt=()
-for pkg in libportaudio2 espeak-ng sox libjpeg-turbo-progs; do
+for pkg in libportaudio2 espeak-ng sox libjpeg-turbo-progs chromium; do
     dpkg -s "$pkg" >/dev/null 2>&1 || need_apt+=("$pkg")
 done
 command -v npm >/dev/null 2>&1 || need_apt+=(nodejs npm)

@@ -23,6 +23,7 @@ COMMAND_MODULES = (
     "robovoice.commands.assistant",
     "robovoice.commands.voice",
     "robovoice.commands.bench",
+    "robovoice.commands.console",
     "robovoice.commands.models",
 )
 
