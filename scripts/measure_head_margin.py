@@ -18,8 +18,9 @@ import json
 import math
 from pathlib import Path
 
-from robovoice.assistant.connect import RobotTarget, open_robot
+from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.prompt import SYSTEM_PROMPT
+from robovoice.config import RobotConfig
 from robovoice.eval.cases import load_cases
 from robovoice.llm.base import ChatMessage
 from robovoice.llm.local import LocalLlamaBackend
@@ -41,7 +42,7 @@ EXTRA: list[tuple[str, str, bool]] = [
 async def measure(path: Path) -> list[dict[str, object]]:
     inputs = [(c.id, c.text or "", bool(c.expect)) for c in load_cases(path) if c.text is not None]
     inputs += EXTRA
-    async with open_robot(RobotTarget(robot="sim")) as link:
+    async with connect_robot(RobotConfig(address="sim://")) as link:
         specs = await link.tools.specs()
     backend = LocalLlamaBackend(tool_bias=0.0)
     rows: list[dict[str, object]] = []

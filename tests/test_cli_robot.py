@@ -36,7 +36,7 @@ def test_tools_json_lists_exactly_the_design_tools(capsys: pytest.CaptureFixture
     tools = json.loads(capsys.readouterr().out)
     assert {tool["name"] for tool in tools} == SIM_TOOLS and len(tools) == len(SIM_TOOLS)
     for tool in tools:
-        assert set(tool) <= {"name", "description", "inputSchema", "annotations"}
+        assert set(tool) <= {"name", "description", "inputSchema", "annotations", "_meta"}
         assert tool["description"] and tool["inputSchema"]["type"] == "object"
     navigate = next(t for t in tools if t["name"] == "navigate_to")
     assert navigate["inputSchema"]["required"] == ["target"]
@@ -169,6 +169,7 @@ def test_output_into_a_closed_pipe_ends_quietly() -> None:
     first = proc.stdout.readline()
     proc.stdout.close()  # like `head -1` exiting
     err = proc.stderr.read().decode()
+    proc.stderr.close()
     proc.wait(timeout=BOUND_S)
     assert first.strip()
     assert "Traceback" not in err and "BrokenPipeError" not in err

@@ -5,9 +5,11 @@ Folders come from the environment through `environment()`; secrets from files th
 
     # robovoice.toml
     [robot]
-    robot = "sim"                        # the embedded simulated robot (default), or:
-    # middleware = "zenoh://127.0.0.1:7447"; manifests = "path/to/manifests"
-    # server = "http://robot.local:8765/mcp"; token_file = "~/.config/robovoice/robot.token"
+    address = "sim://?speed=2"           # the embedded simulated robot (default: sim://), or any
+                                         # robot address (robovoice.address): a middleware URI
+    # address = "zenoh://127.0.0.1:7447"; manifests = "path/to/manifests"
+    # address = "http://robot.local:8765/mcp"; token_file = "~/.config/robovoice/robot.token"
+    # address = "stdio:robovoice serve --robot sim"
 
     [[llm.backends]]                     # tried in order each turn (failover)
     url = "http://edge-server:8000/v1"   # any OpenAI-compatible server: vLLM, llama.cpp, Ollama, a cloud
@@ -23,15 +25,18 @@ from __future__ import annotations
 
 import logging
 import os
+import re
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PurePath
 from typing import Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
+from robovoice.address import HttpAddress, LocalAddress, RobotAddress, StdioAddress, parse_robot_address
 from robovoice.errors import ConfigError
+from robovoice.urls import check_http_url
 
 log = logging.getLogger(__name__)
 
@@ -40,13 +45,70 @@ class _Frozen(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
+_OLD_ROBOT_KEYS = {"robot", "middleware", "server", "sim_speed"}
+
+
 class RobotConfig(_Frozen):
-    robot: str | None = None
-    middleware: str | None = None
+    """Which robot (`address`, see `robovoice.address`) and what goes with it: `manifests`
+    (a folder replacing the nodes' own; robots served in this process) and `token_file`
+    (the bearer token of an http(s) MCP server). The one robot config: the TOML ``[robot]``
+    section, and what the command-line options make of it."""
+
+    address: str = "sim://"
     manifests: Path | None = None
-    server: str | None = None
     token_file: Path | None = None
-    sim_speed: float = Field(default=1.0, gt=0)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _old_keys(cls, data: Any) -> Any:
+        if isinstance(data, Mapping) and _OLD_ROBOT_KEYS & set(data):
+            old = sorted(_OLD_ROBOT_KEYS & set(data))
+            raise ValueError(f"{', '.join(old)}: the robot is now one address; write {_new_form(data)}")
+        return data
+
+    @field_validator("address")
+    @classmethod
+    def _address(cls, value: str) -> str:
+        try:
+            parse_robot_address(value)
+        except ConfigError as exc:
+            raise ValueError(str(exc)) from None
+        return value
+
+    @model_validator(mode="after")
+    def _options_fit(self) -> RobotConfig:
+        target = self.target()
+        if self.token_file is not None and not isinstance(target, HttpAddress):
+            raise ValueError(f"token_file is for an http(s):// MCP server, not {self.address!r}")
+        if self.manifests is not None and isinstance(target, HttpAddress | StdioAddress):
+            raise ValueError(f"manifests apply to a robot served here (sim:// or a middleware URI); the MCP "
+                             f"server at {self.address!r} uses its own")
+        return self
+
+    def target(self) -> RobotAddress:
+        """The parsed address."""
+        return parse_robot_address(self.address)
+
+    def local(self, command: str) -> LocalAddress:
+        """The parsed address, which must be a robot run in this process (for `command`)."""
+        target = self.target()
+        if isinstance(target, HttpAddress | StdioAddress):
+            raise ConfigError(f"{command} needs the robot's nodes in this process: give sim:// or a middleware "
+                              f"URI (e.g. zenoh://127.0.0.1:7447), not the MCP server {self.address!r}")
+        return target
+
+    def describe(self) -> str:
+        target = self.target()
+        return f"{target} (embedded)" if isinstance(target, LocalAddress) else str(target)
+
+
+def _new_form(old: Mapping[str, Any]) -> str:
+    """The ``[robot]`` lines an old-style section means."""
+    speed = old.get("sim_speed")
+    address = old.get("server") or old.get("middleware") or (
+        f"sim://?speed={speed:g}" if isinstance(speed, int | float) else "sim://")
+    lines = [f'address = "{address}"'] + [f'{key} = "{old[key]}"' for key in ("manifests", "token_file") if key in old]
+    return "; ".join(lines)
 
 
 class BackendConfig(_Frozen):
@@ -61,10 +123,31 @@ class BackendConfig(_Frozen):
     first_token_s: float | None = Field(default=None, gt=0)
     extra_body: dict[str, Any] = Field(default_factory=dict)
 
+    @field_validator("url")
+    @classmethod
+    def _url(cls, value: str | None) -> str | None:
+        if value is not None:
+            try:
+                check_http_url(value, "url", example="http://edge-server:8000/v1",
+                               secret_fix="give the API key with api_key_env or api_key_file")
+            except ConfigError as exc:
+                raise ValueError(str(exc)) from None
+        return value
+
     @model_validator(mode="after")
     def _kind(self) -> BackendConfig:
         if self.local == bool(self.url):
             raise ValueError("each backend needs either `url` (an OpenAI-compatible server) or `local = true`")
+        if self.api_key_env and self.api_key_file:
+            raise ValueError("give the API key as api_key_env or api_key_file, not both")
+        if self.local:
+            misplaced = [name for name in ("model", "api_key_env", "api_key_file", "connect_s", "first_token_s")
+                         if getattr(self, name) is not None] + (["accepts_audio"] if self.accepts_audio else []) + (
+                ["extra_body"] if self.extra_body else [])
+            if misplaced:
+                raise ValueError(f"{', '.join(misplaced)}: for url backends only; a local backend takes model_path")
+        elif self.model_path is not None:
+            raise ValueError("model_path is for `local = true` backends; a url backend names its `model`")
         return self
 
 
@@ -73,6 +156,10 @@ class LLMConfig(_Frozen):
 
 
 class VoiceConfig(_Frozen):
+    """``[voice]``: the voice pipeline's settings, and the one place their defaults and limits
+    live (`robovoice.voice.config.PipelineConfig.from_config` turns them into the pipeline's
+    runtime settings; docs/voice.md says what each does). Times in seconds unless named ``_ms``."""
+
     wake_model: str = "hey_jarvis"
     # what the wake word says, for stripping it from transcripts and for speech-to-text hints;
     # default: the bundled model's name as words ("hey_mycroft" -> "hey mycroft")
@@ -80,11 +167,38 @@ class VoiceConfig(_Frozen):
     wake_threshold: float = Field(default=0.5, gt=0, lt=1)
     end_of_turn_silence_ms: int = Field(default=500, ge=100)
     max_utterance_s: float = Field(default=15.0, gt=0)
+    # turn-taking: the command after a wake word said alone; answering the robot's question
+    # without the wake word (always, not only after a question, with follow_up_always)
+    command_timeout_s: float = Field(default=6.0, ge=0)
     follow_up_s: float = Field(default=6.0, ge=0)
+    follow_up_always: bool = False
+    wake_slack_s: float = Field(default=0.6, ge=0)  # a wake word this close after an utterance belongs to it
+    stop_max_s: float = Field(default=4.0, ge=0)  # longer utterances are never checked for a spoken stop
+    playback_tail_s: float = Field(default=0.3, ge=0)  # the echo of playback lasts this long
+    # self-voice rejection
+    echo_cancellation: bool = True
+    echo_partitions: int = Field(default=8, ge=1)
+    echo_step: float = Field(default=0.5, gt=0, le=1.5)
+    near_end_margin_db: float = 6.0
+    playback_wake_threshold: float = Field(default=0.7, gt=0, le=1)
+    playback_match_score: float = Field(default=0.2, ge=0, le=1)
+    # spoken output
+    progress_interval_s: float = Field(default=8.0, ge=0)  # at most one progress line per this long
+    stop_reply: str = "Stopped."  # after a spoken stop (unless the stop tool's manifest says otherwise)
+    stop_failed_reply: str = "I could not stop the robot!"
+    speech_queue: int = Field(default=8, ge=1)  # sentences queued for speech
+    stop_timeout_s: float = Field(default=5.0, gt=0)  # the stop tool's answer, at most
     # speech-to-text: Whisper tiny.en (takes vocabulary hints), Moonshine base-en, or none
     # (only with an audio-capable model)
     stt: Literal["whisper", "moonshine", "none"] = "whisper"
     vocabulary: tuple[str, ...] = ()  # extra words for speech-to-text (names, places)
+
+    @property
+    def spoken_wake_phrase(self) -> str:
+        """`wake_phrase`, or the wake model's name as words ("hey_jarvis", ".../okay_robot_v0.2.onnx")."""
+        if self.wake_phrase is not None:
+            return self.wake_phrase
+        return re.sub(r"_v[\d.]+$", "", PurePath(self.wake_model).stem).replace("_", " ")
 
 
 class Config(_Frozen):
@@ -106,8 +220,18 @@ def load_config(path: Path | None) -> Config:
     try:
         return Config.model_validate(raw)
     except ValidationError as exc:
-        problems = "; ".join(f"{'.'.join(str(p) for p in e['loc'])}: {e['msg']}" for e in exc.errors())
-        raise ConfigError(f"{path}: {problems}") from exc
+        raise ConfigError(validation_message(exc, str(path))) from None
+
+
+def validation_message(exc: ValidationError, source: str) -> str:
+    """One line per problem: the source, the field (``robot.address``) and what to do."""
+    def one(error: Any) -> str:
+        where = ".".join(str(p) for p in error["loc"])
+        message = str(error["msg"]).removeprefix("Value error, ")
+        value = "" if error["type"] in ("value_error", "missing") else f" (got {error.get('input')!r})"
+        return f"{where}: {message}{value}" if where else message + value
+
+    return f"{source}: " + "; ".join(one(e) for e in exc.errors())
 
 
 def read_secret_file(path: Path, what: str) -> str:

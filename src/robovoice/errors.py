@@ -24,12 +24,12 @@ class ConfigError(RobovoiceError):
 
 
 class UnsupportedURIError(ConfigError):
-    """A middleware (or other) URI whose scheme has no adapter."""
+    """A URI (a middleware URI, a robot address) whose scheme is not in its scheme table."""
 
-    def __init__(self, uri: str, supported: list[str]) -> None:
+    def __init__(self, uri: str, supported: list[str], *, what: str = "URI") -> None:
         self.uri = uri
         self.supported = supported
-        super().__init__(f"unsupported URI {uri!r}: supported schemes are {', '.join(supported)}")
+        super().__init__(f"unsupported {what} {uri!r}: supported schemes are {', '.join(supported)}")
 
 
 class ManifestError(ConfigError):

@@ -4,7 +4,8 @@ only forbidden actuation tools that ran count as false actuations."""
 
 from __future__ import annotations
 
-from robovoice.assistant.connect import RobotTarget, open_robot
+from robovoice.assistant.connect import connect_robot
+from robovoice.config import RobotConfig
 from robovoice.eval.cases import Case
 from robovoice.eval.runner import run_eval
 from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
@@ -35,7 +36,7 @@ async def test_the_report_says_what_reached_the_robot() -> None:
     async with FakeOpenAIServer(script) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
         try:
-            report = (await run_eval(cases, backend, lambda: open_robot(RobotTarget(sim_speed=40.0)))).to_dict()
+            report = (await run_eval(cases, backend, lambda: connect_robot(RobotConfig(address="sim://?speed=40")))).to_dict()
         finally:
             await backend.aclose()
     by_id = {r["id"]: r for r in report["results"]}

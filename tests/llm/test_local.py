@@ -11,8 +11,9 @@ from collections.abc import AsyncIterator, Sequence
 import pytest
 import pytest_asyncio
 
-from robovoice.assistant.connect import RobotTarget, open_robot
+from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.prompt import SYSTEM_PROMPT
+from robovoice.config import RobotConfig
 from robovoice.llm.base import (
     ChatMessage,
     DeadlineExceededError,
@@ -185,7 +186,7 @@ async def test_the_assistant_gets_the_calibrated_bias_by_default() -> None:
 
 @pytest_asyncio.fixture(scope="module", loop_scope="module")
 async def sim_tools() -> list[ToolSpec]:
-    async with open_robot(RobotTarget(robot="sim")) as link:
+    async with connect_robot(RobotConfig(address="sim://")) as link:
         return await link.tools.specs()
 
 

@@ -7,7 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from robovoice.mcp_server import HttpEndpoint, Robot, RobotSpec, http_server, open_robot
+from robovoice.address import SimAddress
+from robovoice.mcp_server import HttpEndpoint, RobotSide, http_server, open_robot_side
 
 from .mcp_testkit import FAST
 
@@ -18,15 +19,15 @@ def audit_path(tmp_path: Path) -> Path:
 
 
 @pytest.fixture
-async def robot(audit_path: Path) -> AsyncIterator[Robot]:
+async def robot(audit_path: Path) -> AsyncIterator[RobotSide]:
     """The sim robot (fast clock) and its RobotToolServer, following presence, with an audit log."""
-    async with open_robot(RobotSpec(sim=True, sim_speed=FAST, audit_log=audit_path)) as running:
+    async with open_robot_side(SimAddress(speed=FAST), manifests=None, audit_log=audit_path) as running:
         yield running
     assert running.sim is not None and running.sim.failure is None
 
 
 @pytest.fixture
-async def http(robot: Robot) -> AsyncIterator[HttpEndpoint]:
+async def http(robot: RobotSide) -> AsyncIterator[HttpEndpoint]:
     """`robot`'s server over streamable HTTP: a real uvicorn on a free loopback port."""
     async with http_server(robot.server, port=0) as endpoint:
         yield endpoint

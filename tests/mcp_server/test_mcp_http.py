@@ -14,9 +14,10 @@ import pytest
 from mcp import Client
 from mcp.client.streamable_http import streamable_http_client
 
+from robovoice.address import SimAddress
 from robovoice.errors import ConfigError
 from robovoice.manifest import ToolEntry
-from robovoice.mcp_server import HttpEndpoint, Robot, RobotSpec, check_bind, http_server, open_robot
+from robovoice.mcp_server import HttpEndpoint, RobotSide, check_bind, http_server, open_robot_side
 
 from .mcp_testkit import (
     BOUND_S,
@@ -50,7 +51,7 @@ async def test_lists_exactly_the_design_tools(http: HttpEndpoint, mode: str) -> 
     assert dock.input_schema["properties"] == {}  # target is fixed by the manifest, hidden from the model
 
 
-async def test_every_sim_tool_works(robot: Robot, http: HttpEndpoint) -> None:
+async def test_every_sim_tool_works(robot: RobotSide, http: HttpEndpoint) -> None:
     sim = robot.sim
     assert sim is not None
     async with Client(http.url, mode="legacy") as client:
@@ -108,7 +109,7 @@ async def test_structured_content_mirrors_the_text(http: HttpEndpoint) -> None:
 
 
 @pytest.mark.parametrize("mode", MODES)
-async def test_bad_arguments_never_reach_the_robot(robot: Robot, http: HttpEndpoint, mode: str) -> None:
+async def test_bad_arguments_never_reach_the_robot(robot: RobotSide, http: HttpEndpoint, mode: str) -> None:
     assert robot.sim is not None
     async with Client(http.url, mode=mode) as client:
         for arguments in ({}, {"target": 3}, {"target": "kitchen", "speed": 9.0}, {"target": ""}):
@@ -141,7 +142,7 @@ async def test_unknown_and_unreachable_targets(http: HttpEndpoint) -> None:
     assert nobody.is_error and "Anna" in json.dumps(body(nobody))
 
 
-async def test_safety_critical_rpcs_are_unreachable(robot: Robot, http: HttpEndpoint) -> None:
+async def test_safety_critical_rpcs_are_unreachable(robot: RobotSide, http: HttpEndpoint) -> None:
     sim = robot.sim
     assert sim is not None
     before = sim.state
@@ -180,8 +181,8 @@ async def test_progress_notifications_during_a_drive(http: HttpEndpoint, mode: s
 
 @pytest.mark.parametrize("mode", MODES)
 async def test_cancel_during_navigate_stops_the_drive(audit_path: Path, mode: str) -> None:
-    spec = RobotSpec(sim=True, sim_speed=DRIVING, audit_log=audit_path)
-    async with open_robot(spec) as robot, http_server(robot.server) as endpoint:
+    async with (open_robot_side(SimAddress(speed=DRIVING), manifests=None, audit_log=audit_path) as robot,
+                http_server(robot.server) as endpoint):
         sim = robot.sim
         assert sim is not None
         async with Client(endpoint.url, mode=mode) as client:
@@ -206,7 +207,7 @@ async def test_cancel_during_navigate_stops_the_drive(audit_path: Path, mode: st
             assert not (await client.call_tool("get_robot_pose", {})).is_error
 
 
-async def test_list_changed_reaches_handshake_clients(robot: Robot, http: HttpEndpoint) -> None:
+async def test_list_changed_reaches_handshake_clients(robot: RobotSide, http: HttpEndpoint) -> None:
     notes = Notifications()
     lamp = Lamp()
     async with Client(http.url, mode="legacy", message_handler=notes) as client:
@@ -220,7 +221,7 @@ async def test_list_changed_reaches_handshake_clients(robot: Robot, http: HttpEn
         assert {t.name for t in (await client.list_tools()).tools} == SIM_TOOLS
 
 
-async def test_list_changed_reaches_listen_streams(robot: Robot, http: HttpEndpoint) -> None:
+async def test_list_changed_reaches_listen_streams(robot: RobotSide, http: HttpEndpoint) -> None:
     async with Client(http.url) as client:
         assert client.protocol_version == "2026-07-28"
         async with client.listen(tools_list_changed=True) as subscription:
@@ -235,7 +236,7 @@ async def test_list_changed_reaches_listen_streams(robot: Robot, http: HttpEndpo
             assert "set_lamp" not in {t.name for t in (await client.list_tools()).tools}
 
 
-async def test_audit_log_records_every_call(robot: Robot, http: HttpEndpoint, audit_path: Path) -> None:
+async def test_audit_log_records_every_call(robot: RobotSide, http: HttpEndpoint, audit_path: Path) -> None:
     async with Client(http.url, mode="legacy") as client:
         await client.call_tool("set_projector_power", {"on": True})
         await client.call_tool("navigate_to", {"target": "garage"})
@@ -283,7 +284,7 @@ async def test_foreign_host_and_origin_are_rejected(http: HttpEndpoint) -> None:
         assert (await _post(http.url, good)).status_code == 200, good
 
 
-async def test_token_is_required_and_checked(robot: Robot) -> None:
+async def test_token_is_required_and_checked(robot: RobotSide) -> None:
     token = "s3cret-token-of-decent-length"
     async with http_server(robot.server, token=token) as endpoint:
         missing = await _post(endpoint.url, {})
@@ -309,7 +310,7 @@ def test_non_loopback_bind_needs_a_token() -> None:
         check_bind(host, None)
 
 
-async def test_http_server_refuses_before_binding(robot: Robot) -> None:
+async def test_http_server_refuses_before_binding(robot: RobotSide) -> None:
     with pytest.raises(ConfigError, match="without a bearer token"):
         async with http_server(robot.server, host="0.0.0.0", port=0):
             pytest.fail("must not start")

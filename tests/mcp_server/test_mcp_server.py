@@ -15,8 +15,9 @@ import mcp_types as types
 import pytest
 from mcp import Client
 
+from robovoice.address import SimAddress
 from robovoice.errors import ConfigError
-from robovoice.mcp_server import AuditLog, RobotSpec, RobotToolServer, open_embedded_robot, open_robot
+from robovoice.mcp_server import AuditLog, RobotToolServer, open_embedded_client, open_robot_side
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.snapshot import SnapshotStore
 
@@ -145,8 +146,8 @@ async def test_bad_manifests_leave_the_other_tools_served(tmp_path: Path) -> Non
     base = json.loads((folder / "base" / "mcp.json").read_text())
     base["tools"][0]["rpc"] = "set_max_speed_typo"
     (folder / "base" / "mcp.json").write_text(json.dumps(base), encoding="utf-8")
-    spec = RobotSpec(sim=True, sim_speed=50, manifests=folder)
-    async with open_robot(spec) as robot, Client(robot.server.server, mode="legacy") as client:
+    async with (open_robot_side(SimAddress(speed=50), manifests=folder, audit_log=None) as robot,
+                Client(robot.server.server, mode="legacy") as client):
         names = {t.name for t in (await client.list_tools()).tools}
         navigation = {"navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock"}
         assert names == SIM_TOOLS - navigation - {"stop_robot"}  # the battery snapshot of base stays
@@ -164,19 +165,20 @@ async def test_a_manifest_override_cannot_reach_what_the_node_does_not_offer(tmp
     base["tools"].append({"name": "go_fast", "rpc": "set_max_speed", "description": "Faster.",
                           "parameters": {"type": "object", "properties": {"mps": {"type": "number"}}}})
     (folder / "base" / "mcp.json").write_text(json.dumps(base), encoding="utf-8")
-    async with open_robot(RobotSpec(sim=True, sim_speed=50, manifests=folder)) as robot:
+    async with open_robot_side(SimAddress(speed=50), manifests=folder, audit_log=None) as robot:
         # declaring it is what makes an RPC reachable: the manifest folder is part of the trusted config
         assert "go_fast" in {t.name for t in robot.server.tools()}
 
 
 async def test_embedded_robot_gives_a_connected_client() -> None:
     notes = Notifications()
-    async with open_embedded_robot(sim_speed=50, message_handler=notes) as robot:
+    async with (open_robot_side(SimAddress(speed=50), manifests=None, audit_log=None) as robot,
+                open_embedded_client(robot, message_handler=notes) as client):
         assert robot.sim is not None
-        assert {t.name for t in (await robot.client.list_tools()).tools} == SIM_TOOLS
-        await robot.apply_setup("projector_on")
+        assert {t.name for t in (await client.list_tools()).tools} == SIM_TOOLS
+        await robot.sim.apply_setup("projector_on")
         assert robot.sim.state.projector_on
-        result = await robot.client.call_tool("set_projector_power", {"on": False})
+        result = await client.call_tool("set_projector_power", {"on": False})
         assert not result.is_error and not robot.sim.state.projector_on
         await host_lamp(robot.middleware, Lamp())
         await notes.wait_count(types.ToolListChangedNotification, 1)
@@ -184,11 +186,13 @@ async def test_embedded_robot_gives_a_connected_client() -> None:
 
 async def test_embedded_robot_lets_the_callers_errors_through() -> None:
     with pytest.raises(ConfigError, match="mine"):
-        async with open_embedded_robot(sim_speed=50):
+        async with (open_robot_side(SimAddress(speed=50), manifests=None, audit_log=None) as robot,
+                    open_embedded_client(robot)):
             raise ConfigError("mine")
 
 
 async def test_unknown_robot_is_a_config_error() -> None:
-    with pytest.raises(ConfigError, match="sim"):
-        async with open_embedded_robot(robot="turtle"):  # type: ignore[arg-type]
-            pytest.fail("must not start")
+    from robovoice.address import parse_robot_address
+
+    with pytest.raises(ConfigError, match="sim://"):
+        parse_robot_address("turtle://")

@@ -8,7 +8,8 @@ from pathlib import Path
 
 import pytest
 
-from robovoice.assistant.connect import RobotTarget, open_robot
+from robovoice.assistant.connect import connect_robot
+from robovoice.config import RobotConfig
 from robovoice.eval.cases import load_cases
 from robovoice.eval.runner import run_eval
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
@@ -51,8 +52,8 @@ async def test_audio_cases_through_the_pipeline(voice_models: VoiceModels) -> No
         backend = OpenAICompatBackend(server.base_url, server.model)
         try:
             async with open_clip_runner(models=voice_models) as audio:
-                report = await run_eval(cases, backend, lambda: open_robot(RobotTarget(sim_speed=2.0)),
-                                        audio=audio)
+                robot = RobotConfig(address="sim://?speed=2")
+                report = await run_eval(cases, backend, lambda: connect_robot(robot), audio=audio)
         finally:
             await backend.aclose()
     summary = report.to_dict()

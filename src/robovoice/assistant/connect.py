@@ -1,60 +1,58 @@
-"""Connecting the assistant to a robot's MCP server: embedded, or remote over HTTP / stdio.
+"""The assistant's connection to a robot, whatever its address (`robovoice.address`):
 
-- embedded (`--robot sim`, or `--middleware URI [--manifests DIR]`): the robot side runs in
-  this process and the SDK client talks to it in memory;
-- remote (`--server http://host:port/mcp [--token-file F]`): streamable HTTP with a bearer token;
-- stdio (`--server "stdio:robovoice serve --robot sim"`): the server is a child process.
+- ``sim://`` or a middleware URI: the robot side runs in this process (`open_robot_side`) and
+  an SDK client talks to it in memory;
+- ``http(s)://host:port/mcp``: streamable HTTP, with the bearer token from `token_file`;
+- ``stdio:COMMAND``: the MCP server is a child process.
+
+    async with connect_robot(RobotConfig(address="sim://?speed=5")) as robot:
+        await robot.tools.specs()
 """
 
 from __future__ import annotations
 
 import logging
-import shlex
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Collection
 from contextlib import AsyncExitStack, asynccontextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 import httpx2
 from mcp import Client
 from mcp.client.stdio import StdioServerParameters
 from mcp.client.streamable_http import streamable_http_client
 
+from robovoice.address import HttpAddress, StdioAddress
 from robovoice.assistant.robot_tools import RobotTools
-from robovoice.config import read_secret_file
+from robovoice.config import RobotConfig, read_secret_file
 from robovoice.errors import ConfigError, RobotUnreachableError
+from robovoice.mcp_server._groups import unwrapped
+from robovoice.mcp_server.runtime import RobotSide, open_robot_side, wait_for_tools
+from robovoice.sim import SimRobot
 
 log = logging.getLogger(__name__)
 
+CALL_TIMEOUT_S = 330.0  # a drive across the sim's map at speed 1 takes minutes
+CONNECT_TIMEOUT_S = 10.0
+
 
 @dataclass(frozen=True, slots=True)
-class RobotTarget:
-    """Where the robot is. Exactly one of `robot`, `middleware`, `server`."""
-
-    robot: str | None = "sim"
-    middleware: str | None = None
-    manifests: Path | None = None
-    server: str | None = None
-    token_file: Path | None = None
-    sim_speed: float = 1.0
-
-    def describe(self) -> str:
-        if self.server:
-            return self.server
-        return f"{self.middleware} (embedded)" if self.middleware else f"{self.robot} robot (embedded)"
-
-
-@dataclass
-class RobotLink:
-    """A connected robot: its tools for the assistant, and the sim (embedded sim only)."""
+class RobotConnection:
+    """A connected robot as the assistant sees it: its `tools`, and the `side` when the robot
+    runs in this process (None for an MCP server reached over HTTP or stdio)."""
 
     tools: RobotTools
-    sim: Any = None  # robovoice.sim.robot.SimRobot when embedded
+    side: RobotSide | None = None
+
+    @property
+    def sim(self) -> SimRobot | None:
+        """The embedded simulated robot, if that is the robot."""
+        return self.side.sim if self.side is not None else None
 
     async def apply_setup(self, setup: str) -> None:
+        """Establish a DESIGN.md §6 `setup` through the sim's own RPCs (not counted as MCP calls)."""
         if self.sim is None:
-            raise ConfigError("case setups need the embedded simulated robot (--robot sim)")
+            raise ConfigError("case setups need the embedded simulated robot (--robot sim://)")
         await self.sim.apply_setup(setup)
 
 
@@ -68,51 +66,60 @@ def _root_cause(exc: BaseException) -> str:
 
 
 @asynccontextmanager
-async def open_robot(target: RobotTarget, *, call_timeout_s: float = 330.0) -> AsyncIterator[RobotLink]:
-    """Connect to the robot and yield a `RobotLink`; everything is closed on exit."""
+async def connect_robot(
+    config: RobotConfig,
+    *,
+    audit_log: Path | None = None,
+    call_timeout_s: float = CALL_TIMEOUT_S,
+    client_name: str = "robovoice-assistant",
+    settle_s: float = 0.0,
+    tool_names: Collection[str] = (),
+) -> AsyncIterator[RobotConnection]:
+    """Connect to the robot `config` names and yield a `RobotConnection`; all is closed on exit.
+
+    For a robot served here: `audit_log` (None: none) and, for nodes on a network middleware,
+    `settle_s` seconds to wait for `tool_names` (or, without names, for the tool list to settle).
+    """
     tools = RobotTools(call_timeout_s=call_timeout_s)
-    if target.server:
+    target = config.target()
+    if isinstance(target, HttpAddress | StdioAddress):
         async with AsyncExitStack() as stack:
             try:
-                client = await stack.enter_async_context(_remote_client(target, tools))
+                client = await stack.enter_async_context(_remote_client(target, config.token_file, tools))
                 tools.attach(client)
                 await tools.specs()
             except ConfigError:
                 raise
-            except Exception as exc:  # connection refused, 401, TLS...: one clear message
-                raise RobotUnreachableError(f"cannot reach the robot's MCP server at {target.server}: "
+            except Exception as exc:  # connection refused, 401, TLS, a child that exits...: one clear message
+                raise RobotUnreachableError(f"cannot reach the robot's MCP server at {target}: "
                                             f"{_root_cause(exc)}") from exc
-            yield RobotLink(tools)
+            yield RobotConnection(tools)
         return
-    from robovoice.mcp_server.embedded import open_embedded_robot  # the robot side, in this process
+    from robovoice.mcp_server.embedded import open_embedded_client
 
-    async with open_embedded_robot(
-        robot=target.robot if not target.middleware else None,
-        middleware=target.middleware,
-        manifests=target.manifests,
-        sim_speed=target.sim_speed,
-        message_handler=tools.handle_message,
-    ) as embedded:
-        tools.attach(embedded.client)
-        await tools.specs()
-        yield RobotLink(tools, embedded.sim)
+    async with (
+        unwrapped(),
+        open_robot_side(target, manifests=config.manifests, audit_log=audit_log) as side,
+    ):
+        if settle_s > 0:
+            await wait_for_tools(side.server, names=tool_names, timeout=settle_s)
+        async with open_embedded_client(side, message_handler=tools.handle_message,
+                                        client_name=client_name) as client:
+            tools.attach(client)
+            await tools.specs()
+            yield RobotConnection(tools, side)
 
 
 @asynccontextmanager
-async def _remote_client(target: RobotTarget, tools: RobotTools) -> AsyncIterator[Client]:
-    assert target.server is not None
-    if target.server.startswith("stdio:"):
-        argv = shlex.split(target.server[len("stdio:"):])
-        if not argv:
-            raise ConfigError("--server stdio: needs a command, e.g. 'stdio:robovoice serve --robot sim'")
-        params = StdioServerParameters(command=argv[0], args=argv[1:])
+async def _remote_client(target: HttpAddress | StdioAddress, token_file: Path | None,
+                         tools: RobotTools) -> AsyncIterator[Client]:
+    if isinstance(target, StdioAddress):
+        params = StdioServerParameters(command=target.argv[0], args=list(target.argv[1:]))
         async with Client(params, message_handler=tools.handle_message, cache=None, mode="legacy") as client:
             yield client
         return
-    if not target.server.startswith(("http://", "https://")):
-        raise ConfigError(f"--server must be an http(s):// URL or 'stdio:<command>', got {target.server!r}")
-    headers = {"Authorization": f"Bearer {read_secret_file(target.token_file, 'token')}"} if target.token_file else {}
-    http = httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(10.0, read=330.0))
-    async with http, Client(streamable_http_client(target.server, http_client=http),
+    headers = {"Authorization": f"Bearer {read_secret_file(token_file, 'token')}"} if token_file else {}
+    http = httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(CONNECT_TIMEOUT_S, read=CALL_TIMEOUT_S))
+    async with http, Client(streamable_http_client(target.url, http_client=http),
                             message_handler=tools.handle_message, cache=None, mode="legacy") as client:
         yield client

@@ -9,7 +9,7 @@ import sys
 import time
 from pathlib import Path
 
-from robovoice.assistant.connect import open_robot
+from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.events import (
     BackendFailed,
     SentenceReady,
@@ -24,9 +24,11 @@ from robovoice.commands.common import (
     add_robot_args,
     backend_from_args,
     config_from_args,
-    robot_target_from_args,
+    positive_int,
+    robot_config_from_args,
     warm_up,
 )
+from robovoice.errors import ConfigError
 from robovoice.eval.cases import load_cases
 from robovoice.eval.runner import CaseResult, run_eval
 
@@ -37,7 +39,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
         description="A text conversation with the assistant; tool calls and results are shown as they happen.")
     add_robot_args(chat)
     add_llm_args(chat)
-    chat.add_argument("--max-steps", type=int, default=4, help="model calls per turn at most (default 4)")
+    chat.add_argument("--max-steps", type=positive_int, default=4, help="model calls per turn at most (default 4)")
     chat.set_defaults(run=run_chat)
 
     ev = subparsers.add_parser(
@@ -47,7 +49,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     add_robot_args(ev, default_speed=10.0)
     add_llm_args(ev)
     ev.add_argument("--json", action="store_true", help="print one JSON object with the summary and every case")
-    ev.add_argument("--limit", type=int, help="run only the first N cases")
+    ev.add_argument("--limit", type=positive_int, help="run only the first N cases")
     ev.add_argument("--quiet", action="store_true", help="no per-case lines on stderr")
     ev.add_argument("--only", action="append", metavar="ID", help="run only these case ids")
     ev.set_defaults(run=run_eval_command)
@@ -88,14 +90,14 @@ class ChatPrinter:
 
 async def _chat(args: argparse.Namespace) -> int:
     config = config_from_args(args)
+    robot = robot_config_from_args(args, config)
     backend = backend_from_args(args, config)
-    target = robot_target_from_args(args, config)
     interactive = sys.stdin.isatty()
     try:
-        async with open_robot(target) as link:
+        async with connect_robot(robot) as link:
             specs = await link.tools.specs()
             if interactive:
-                print(f"robovoice chat: {len(specs)} tools from {target.describe()}; loading the model…", flush=True)
+                print(f"robovoice chat: {len(specs)} tools from {robot.describe()}; loading the model…", flush=True)
             await warm_up(backend, specs)
             assistant = Assistant(backend, link.tools, observer=ChatPrinter(), max_steps=args.max_steps)
             if interactive:
@@ -129,24 +131,27 @@ def _print_case(result: CaseResult) -> None:
 async def _eval(args: argparse.Namespace) -> int:
     cases = load_cases(args.file)
     if args.only:
+        unknown = sorted(set(args.only) - {c.id for c in cases})
+        if unknown:
+            raise ConfigError(f"--only: no case with id {', '.join(map(repr, unknown))} in {args.file}")
         cases = [c for c in cases if c.id in set(args.only)]
     if args.limit:
         cases = cases[: args.limit]
     config = config_from_args(args)
+    robot = robot_config_from_args(args, config)
     backend = backend_from_args(args, config)
-    target = robot_target_from_args(args, config)
     audio = None
     try:
-        async with open_robot(target) as link:  # once, to warm the model with the real tool list
+        async with connect_robot(robot) as link:  # once, to warm the model with the real tool list
             await warm_up(backend, await link.tools.specs())
         if any(c.audio is not None for c in cases):
             from robovoice.voice.evaluation import open_clip_runner  # needs robovoice[voice]
 
             async with open_clip_runner(config) as audio:
-                report = await run_eval(cases, backend, lambda: open_robot(target), audio=audio,
+                report = await run_eval(cases, backend, lambda: connect_robot(robot), audio=audio,
                                         on_result=None if args.quiet else _print_case)
         else:
-            report = await run_eval(cases, backend, lambda: open_robot(target),
+            report = await run_eval(cases, backend, lambda: connect_robot(robot),
                                     on_result=None if args.quiet else _print_case)
     finally:
         await backend.aclose()

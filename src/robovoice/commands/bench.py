@@ -16,6 +16,8 @@ from dataclasses import asdict, is_dataclass
 from pathlib import Path
 from typing import Any
 
+from robovoice.commands.common import existing_file, positive_int
+
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     bench = subparsers.add_parser("bench", help="run a benchmark (figures for docs/performance.md)")
@@ -23,32 +25,32 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
     mcp = sub.add_parser("mcp", help="MCP tool-call latency in-process / stdio / HTTP vs a plain SDK server; "
                                      "snapshot reads; snapshot ingest at 1 and 10 kHz")
-    mcp.add_argument("-n", type=int, default=300, help="calls per transport (default 300)")
+    mcp.add_argument("-n", type=positive_int, default=300, help="calls per transport (default 300)")
     mcp.set_defaults(run=_mcp)
 
     zenoh = sub.add_parser("zenoh", help="RPC round trip over Zenoh vs a bare get(); MCP over Zenoh vs memory; "
                                          "snapshot ingest from another process")
-    zenoh.add_argument("-n", type=int, default=1000, help="RPC calls (default 1000)")
+    zenoh.add_argument("-n", type=positive_int, default=1000, help="RPC calls (default 1000)")
     zenoh.set_defaults(run=_zenoh)
 
     llm = sub.add_parser("llm", help="the embedded model: load, warm-up, prefix reuse, first-event latency")
-    llm.add_argument("--repeats", type=int, default=1)
-    llm.add_argument("--threads", type=int, default=2)
+    llm.add_argument("--repeats", type=positive_int, default=1)
+    llm.add_argument("--threads", type=positive_int, default=2)
     llm.set_defaults(run=_llm)
 
     audio = sub.add_parser("audio", help="wake word + VAD CPU, STT latency and accuracy, TTS first audio, "
                                          "wake-word false accepts")
     audio.add_argument("--fixtures", type=Path, default=Path("tests/data/audio"))
-    audio.add_argument("--negative-wav", type=Path,
+    audio.add_argument("--negative-wav", type=existing_file,
                        help="long audio without the wake phrase (≥ 10 min advised); make it with "
                             "scripts/make_audio_fixtures.py --negative-minutes")
-    audio.add_argument("--repeats", type=int, default=3)
+    audio.add_argument("--repeats", type=positive_int, default=3)
     audio.set_defaults(run=_audio)
 
     voice = sub.add_parser("voice", help="end of speech → first audio out, all-local, per stage; "
                                          "or the pipeline's own overhead with instant model fakes")
     voice.add_argument("which", nargs="?", choices=["local", "overhead"], default="local")
-    voice.add_argument("--turns", type=int, help="turns to measure (default 8 local, 30 overhead)")
+    voice.add_argument("--turns", type=positive_int, help="turns to measure (default 8 local, 30 overhead)")
     voice.set_defaults(run=_voice)
 
 
@@ -102,7 +104,10 @@ def _llm(args: argparse.Namespace) -> int:
 
 def _audio(args: argparse.Namespace) -> int:
     from robovoice.audio.bench import run_all
+    from robovoice.errors import ConfigError
 
+    if not args.fixtures.is_dir():
+        raise ConfigError(f"--fixtures {args.fixtures}: no such folder (make it with scripts/make_audio_fixtures.py)")
     return _print(run_all(args.fixtures, negative_wav=args.negative_wav, whisper=True, repeats=args.repeats))
 
 

@@ -1,34 +1,169 @@
-"""Options shared by the commands that talk to a robot and an LLM (chat, eval, demo, assist)."""
+"""Options shared by the commands that talk to a robot and an LLM (serve, tools, call,
+check-manifests, chat, eval, assist, ...): one robot address, one config, strict values.
+
+    --robot ADDRESS      any robot address (robovoice.address): sim (= sim://), sim://?speed=2,
+                         memory://, zenoh://HOST:PORT, http(s)://HOST:PORT/mcp, stdio:COMMAND
+    --middleware URI     the same, for a middleware URI (the documented spelling of old)
+    --server URL         the same, for an MCP server: http(s)://HOST:PORT/mcp or stdio:COMMAND
+    --manifests DIR, --token-file F, --sim-speed X   fields of the robot config
+"""
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import logging
+import math
 import os
+from collections.abc import Callable
 from pathlib import Path
 
-from robovoice.assistant.connect import RobotTarget
+from pydantic import ValidationError
+
+from robovoice.address import (
+    HttpAddress,
+    RobotAddress,
+    SimAddress,
+    StdioAddress,
+    parse_middleware_uri,
+    parse_robot_address,
+    with_sim_speed,
+)
 from robovoice.assistant.prompt import SYSTEM_PROMPT
-from robovoice.config import Config, load_config
+from robovoice.config import Config, RobotConfig, load_config, validation_message
 from robovoice.errors import ConfigError
-from robovoice.llm.base import LLMBackend, ToolSpec
+from robovoice.llm.base import Deadlines, LLMBackend, ToolSpec
 from robovoice.llm.failover import FailoverBackend
 from robovoice.llm.registry import BackendSpec, api_key_from, chain_from_specs
 
 log = logging.getLogger(__name__)
 
+ADDRESS_FORMS = "sim (= sim://), sim://?speed=2, memory://, zenoh://HOST:PORT, http(s)://HOST:PORT/mcp, stdio:COMMAND"
 
-def add_robot_args(parser: argparse.ArgumentParser, *, default_speed: float = 1.0) -> None:
-    group = parser.add_argument_group("robot (default: the embedded simulated robot)")
+
+# --- strict option values ----------------------------------------------------------------
+
+
+def _number(kind: Callable[[str], float], low: float, *, inclusive: bool, what: str) -> Callable[[str], float]:
+    def parse(text: str) -> float:
+        try:
+            value = kind(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected {what}, not {text!r}") from None
+        if not math.isfinite(value) or value < low or (value == low and not inclusive):
+            raise argparse.ArgumentTypeError(f"expected {what}, not {text!r}")
+        return value
+
+    return parse
+
+
+positive_float = _number(float, 0.0, inclusive=False, what="a number greater than 0")
+non_negative_float = _number(float, 0.0, inclusive=True, what="a number of seconds, 0 or more")
+
+
+def positive_int(text: str) -> int:
+    if not text.strip().isdigit() or int(text) < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number of at least 1, not {text!r}")
+    return int(text)
+
+
+def port_number(text: str) -> int:
+    if not text.strip().isdigit() or int(text) > 65535:
+        raise argparse.ArgumentTypeError(f"expected a port from 0 (any free port) to 65535, not {text!r}")
+    return int(text)
+
+
+def host_name(text: str) -> str:
+    if not text.strip() or any(c.isspace() for c in text):
+        raise argparse.ArgumentTypeError(f"expected a host name or address, e.g. 127.0.0.1, not {text!r}")
+    return text
+
+
+def existing_file(text: str) -> Path:
+    path = Path(text).expanduser()
+    if not path.is_file():
+        raise argparse.ArgumentTypeError(f"no such file: {text}")
+    return path
+
+
+# --- the robot ----------------------------------------------------------------------------
+
+
+def add_robot_args(parser: argparse.ArgumentParser, *, default_speed: float = 1.0, token_file: bool = True,
+                   config: bool = False, required_hint: str = "default: the config's [robot] address, else sim://"
+                   ) -> None:
+    """The robot options. `token_file`: offer --token-file (an http(s) robot's token; `serve`
+    has its own). `config`: offer --config (commands without the LLM options)."""
+    group = parser.add_argument_group(f"robot ({required_hint})")
     where = group.add_mutually_exclusive_group()
-    where.add_argument("--robot", choices=["sim"], help="run the simulated robot in this process")
-    where.add_argument("--middleware", metavar="URI", help="serve the nodes on this middleware (memory://, zenoh://…)")
+    where.add_argument("--robot", metavar="ADDRESS", help=f"which robot: {ADDRESS_FORMS}")
+    where.add_argument("--middleware", metavar="URI",
+                       help="serve the nodes present on this middleware (memory://, zenoh://HOST:PORT, ...)")
     where.add_argument("--server", metavar="URL",
-                       help="a remote robot's MCP server: http(s)://host:port/mcp, or 'stdio:<command>'")
-    group.add_argument("--manifests", type=Path, metavar="DIR", help="manifest folder (with --middleware)")
-    group.add_argument("--token-file", type=Path, metavar="F", help="bearer token for --server over HTTP")
-    group.add_argument("--sim-speed", type=float, default=default_speed, metavar="X",
-                       help=f"simulated time speed-up (default {default_speed:g})")
+                       help="a running robot's MCP server: http(s)://HOST:PORT/mcp, or 'stdio:<command>'")
+    group.add_argument("--manifests", type=Path, metavar="DIR",
+                       help="manifests that replace the nodes' own (DIR/<node>/mcp.json or DIR/<node>.mcp.json)")
+    if token_file:
+        group.add_argument("--token-file", type=Path, metavar="F", dest="robot_token_file",
+                           help="the bearer token of an http(s):// robot address")
+    group.add_argument("--sim-speed", type=positive_float, metavar="X",
+                       help=f"simulated seconds per real second for sim:// (default {default_speed:g}; "
+                            f"same as sim://?speed=X)")
+    if config:
+        group.add_argument("--config", type=Path, metavar="FILE", help="a robovoice.toml (see docs/llm.md)")
+    parser.set_defaults(default_sim_speed=default_speed)
+
+
+def config_from_args(args: argparse.Namespace) -> Config:
+    return load_config(getattr(args, "config", None))
+
+
+def address_from_args(args: argparse.Namespace) -> RobotAddress | None:
+    """The address given by --robot, --middleware or --server (None: none given)."""
+    if args.robot:
+        return parse_robot_address(args.robot)
+    if args.middleware:
+        return parse_middleware_uri(args.middleware, "--middleware")
+    if getattr(args, "server", None):
+        address = parse_robot_address(args.server)
+        if not isinstance(address, HttpAddress | StdioAddress):
+            raise ConfigError(f"--server takes an MCP server, http(s)://HOST:PORT/mcp or stdio:COMMAND, not "
+                              f"{args.server!r}; give other robots with --robot")
+        return address
+    return None
+
+
+def robot_config(**fields: object) -> RobotConfig:
+    """A `RobotConfig` from command-line values; a bad value is a `ConfigError` naming it."""
+    try:
+        return RobotConfig.model_validate(fields)
+    except ValidationError as exc:
+        raise ConfigError(validation_message(exc, "robot options")) from None
+
+
+def robot_config_from_args(args: argparse.Namespace, config: Config | None = None) -> RobotConfig:
+    """The robot: the address on the command line (with its --manifests / --token-file), else the
+    config file's ``[robot]`` (options on the command line override its fields), else ``sim://``.
+    A sim address without a speed gets --sim-speed, else the command's default."""
+    given = address_from_args(args)
+    manifests: Path | None = args.manifests
+    token_file: Path | None = getattr(args, "robot_token_file", None)  # `serve --token-file` is the server's own
+    if given is None:
+        section = (config or config_from_args(args)).robot
+        given = section.target()
+        manifests = manifests or section.manifests
+        token_file = token_file or section.token_file
+    speed: float | None = args.sim_speed
+    if speed is not None:
+        if not isinstance(given, SimAddress):
+            raise ConfigError(f"--sim-speed applies to the simulated robot (sim://), not {given}")
+        if given.speed is not None and given.speed != speed:
+            raise ConfigError(f"two sim speeds: --sim-speed {speed:g} and {given}; give one")
+    address = with_sim_speed(given, speed if speed is not None else args.default_sim_speed)
+    return robot_config(address=str(address), manifests=manifests, token_file=token_file)
+
+
+# --- the language model -------------------------------------------------------------------
 
 
 def add_llm_args(parser: argparse.ArgumentParser) -> None:
@@ -44,21 +179,12 @@ def add_llm_args(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--config", type=Path, metavar="FILE", help="a robovoice.toml (see docs/llm.md)")
 
 
-def config_from_args(args: argparse.Namespace) -> Config:
-    return load_config(getattr(args, "config", None))
-
-
-def robot_target_from_args(args: argparse.Namespace, config: Config | None = None) -> RobotTarget:
-    config = config or config_from_args(args)
-    robot_cfg = config.robot
-    if args.server or args.middleware or args.robot:
-        return RobotTarget(robot=args.robot or ("sim" if not (args.server or args.middleware) else None),
-                           middleware=args.middleware, manifests=args.manifests, server=args.server,
-                           token_file=args.token_file, sim_speed=args.sim_speed)
-    if robot_cfg.server or robot_cfg.middleware:
-        return RobotTarget(robot=None, middleware=robot_cfg.middleware, manifests=robot_cfg.manifests,
-                           server=robot_cfg.server, token_file=robot_cfg.token_file, sim_speed=robot_cfg.sim_speed)
-    return RobotTarget(robot="sim", sim_speed=args.sim_speed)
+def _deadlines(connect_s: float | None, first_token_s: float | None) -> Deadlines | None:
+    if connect_s is None and first_token_s is None:
+        return None
+    base = Deadlines()
+    return dataclasses.replace(base, connect_s=connect_s or base.connect_s,
+                               first_token_s=first_token_s or base.first_token_s)
 
 
 def backend_from_args(args: argparse.Namespace, config: Config | None = None) -> FailoverBackend:
@@ -66,11 +192,18 @@ def backend_from_args(args: argparse.Namespace, config: Config | None = None) ->
     config = config or config_from_args(args)
     env = os.environ  # API keys are named on the command line or in the config, read from here
     if args.llm:
+        urls = [spec for spec in args.llm if not spec.strip().startswith("local")]
+        if not urls:
+            misplaced = [flag for flag, value in (("--model", args.model), ("--api-key-env", args.api_key_env),
+                                                  ("--api-key-file", args.api_key_file),
+                                                  ("--audio-input", args.audio_input)) if value]
+            if misplaced:
+                raise ConfigError(f"{', '.join(misplaced)}: for URL backends (--llm http://HOST:PORT/v1) only")
         key = api_key_from(env, env_var=args.api_key_env, key_file=args.api_key_file)
         specs = [
-            BackendSpec(spec, model=args.model if spec.startswith("http") else None,
-                        api_key=key if spec.startswith("http") else None,
-                        accepts_audio=args.audio_input and spec.startswith("http"))
+            BackendSpec(spec, model=args.model if spec in urls else None,
+                        api_key=key if spec in urls else None,
+                        accepts_audio=args.audio_input and spec in urls)
             for spec in args.llm
         ]
     elif config.llm.backends:
@@ -82,7 +215,7 @@ def backend_from_args(args: argparse.Namespace, config: Config | None = None) ->
                 assert b.url is not None
                 specs.append(BackendSpec(b.url, model=b.model, accepts_audio=b.accepts_audio,
                                          api_key=api_key_from(env, env_var=b.api_key_env, key_file=b.api_key_file),
-                                         extra_body=b.extra_body))
+                                         extra_body=b.extra_body, deadlines=_deadlines(b.connect_s, b.first_token_s)))
     else:
         specs = [BackendSpec("local")]
     try:

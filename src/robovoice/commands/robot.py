@@ -1,11 +1,15 @@
 """Robot-side commands: serve the robot's tools over MCP, list them, call one, check manifests.
 
-    robovoice serve --robot sim [--transport stdio|http] [--host H] [--port N] [--token-file F]
-                    [--audit-log F | --no-audit-log] [--sim-speed X]
-    robovoice serve --middleware URI [--manifests DIR] ...
-    robovoice tools --robot sim [--json]
-    robovoice call --robot sim TOOL [key=value ...] [--json]
-    robovoice check-manifests DIR [--robot sim | --middleware URI]
+    robovoice serve [--robot ADDRESS | --middleware URI] [--manifests DIR] [--transport stdio|http]
+                    [--host H] [--port N] [--token-file F] [--audit-log F | --no-audit-log]
+    robovoice tools [--robot ADDRESS] [--json]
+    robovoice call [--robot ADDRESS] TOOL [key=value ...] [--json]
+    robovoice check-manifests DIR [--robot sim:// | --middleware URI]
+
+ADDRESS is any robot address (`robovoice.address`): ``sim`` / ``sim://?speed=2`` (default),
+a middleware URI (``zenoh://127.0.0.1:7447``: the nodes present there), and for `tools` and
+`call` also a running MCP server (``http://host:8765/mcp``, ``stdio:COMMAND``). `serve` and
+`check-manifests` need the nodes in this process: sim:// or a middleware URI.
 
 `serve --transport http` prints one line on standard output when it is listening
 (``robovoice serve: ready: http://127.0.0.1:8765/mcp (12 tools)``); over stdio nothing but
@@ -27,24 +31,32 @@ from pathlib import Path
 from typing import Any, TextIO
 
 import mcp_types as types
-from mcp import Client
 
+from robovoice.address import LocalAddress, MiddlewareAddress, RobotAddress, SimAddress
+from robovoice.assistant.connect import RobotConnection, connect_robot
+from robovoice.commands.common import (
+    add_robot_args,
+    address_from_args,
+    config_from_args,
+    host_name,
+    non_negative_float,
+    port_number,
+    robot_config_from_args,
+)
+from robovoice.config import RobotConfig
 from robovoice.errors import ConfigError
 from robovoice.manifest import check_manifest_dir
 from robovoice.mcp_server import (
-    Robot,
-    RobotSpec,
+    RobotSide,
     check_bind,
     default_audit_path,
     http_server,
-    open_robot,
+    open_robot_side,
     read_token_file,
     serve_stdio,
     wait_for_snapshots,
     wait_for_tools,
 )
-from robovoice.middleware import open_middleware
-from robovoice.sim import start_sim_robot
 
 DEFAULT_PORT = 8765
 _FIRST_SENTENCE = re.compile(r"(?<![A-Z][a-z])\.\s")
@@ -55,17 +67,9 @@ SNAPSHOT_WAIT_S = 5.0  # `call` of a snapshot tool right after start-up waits fo
 # --- arguments ---------------------------------------------------------------------------
 
 
-def _add_robot_args(parser: argparse.ArgumentParser, *, required: bool = True) -> None:
-    where = parser.add_mutually_exclusive_group(required=required)
-    where.add_argument("--robot", choices=["sim"], help="run the simulated robot in this process")
-    where.add_argument("--middleware", metavar="URI",
-                       help="serve the nodes present on this middleware (memory://, zenoh://host:port)")
-    parser.add_argument("--manifests", type=Path, metavar="DIR",
-                        help="manifests that replace the nodes' own (DIR/<node>/mcp.json or DIR/<node>.mcp.json)")
-    parser.add_argument("--sim-speed", type=float, default=1.0, metavar="X",
-                        help="simulated seconds per real second (default 1)")
-    parser.add_argument("--wait", type=float, default=None, metavar="S",
-                        help=f"with --middleware: how long to wait for the nodes to announce themselves "
+def _add_wait_arg(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--wait", type=non_negative_float, default=None, metavar="S",
+                        help=f"with a middleware URI: how long to wait for the nodes to announce themselves "
                              f"(default {DEFAULT_WAIT_S:g} s)")
 
 
@@ -81,14 +85,16 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
     serve = subparsers.add_parser(
         "serve", help="serve the robot's tools over MCP (stdio or streamable HTTP)",
         description="Serve the tools declared by the manifests of the nodes present as an MCP server.")
-    _add_robot_args(serve)
+    add_robot_args(serve, token_file=False, config=True)
+    _add_wait_arg(serve)
     serve.add_argument("--transport", choices=["stdio", "http"], default="stdio", help="default: stdio")
-    serve.add_argument("--host", default="127.0.0.1",
+    serve.add_argument("--host", type=host_name, default="127.0.0.1",
                        help="HTTP bind address (default 127.0.0.1; any other needs --token-file)")
-    serve.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"HTTP port (default {DEFAULT_PORT}; 0: any)")
+    serve.add_argument("--port", type=port_number, default=DEFAULT_PORT,
+                       help=f"HTTP port (default {DEFAULT_PORT}; 0: any free port)")
     serve.add_argument("--token-file", type=Path, metavar="F",
                        help="HTTP: require 'Authorization: Bearer <the token in F>'")
-    serve.add_argument("--allow-host", action="append", default=[], metavar="NAME",
+    serve.add_argument("--allow-host", action="append", default=[], type=host_name, metavar="NAME",
                        help="HTTP: also accept this Host/Origin name, e.g. robot.local (repeatable; loopback "
                             "names and --host always are; a 0.0.0.0 bind with a token accepts any Host)")
     _add_audit_args(serve)
@@ -96,7 +102,8 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
 
     tools = subparsers.add_parser("tools", help="list the robot's MCP tools",
                                   description="List the MCP tools the robot offers now.")
-    _add_robot_args(tools)
+    add_robot_args(tools, config=True)
+    _add_wait_arg(tools)
     tools.add_argument("--json", action="store_true", help="the tool objects exactly as tools/list returns them")
     tools.set_defaults(run=run_tools)
 
@@ -104,7 +111,8 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
         "call", help="call one of the robot's MCP tools",
         description="Call a tool through MCP. Values are JSON when they parse as JSON (on=true, n=3), "
                     "else strings (target=kitchen). Exit status 1 when the tool reports an error.")
-    _add_robot_args(call)
+    add_robot_args(call, config=True)
+    _add_wait_arg(call)
     call.add_argument("tool", help="the tool name (see 'robovoice tools')")
     call.add_argument("arguments", nargs="*", metavar="key=value", help="the tool's arguments")
     call.add_argument("--json", action="store_true", help="print the MCP CallToolResult as JSON")
@@ -113,32 +121,35 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
 
     check = subparsers.add_parser(
         "check-manifests", help="check a folder of manifests (optionally against live nodes)",
-        description="Check every manifest in DIR; with --robot sim or --middleware URI also check the RPCs, "
+        description="Check every manifest in DIR; with --robot sim:// or --middleware URI also check the RPCs, "
                     "parameters and topics they name against the nodes present. Exit status 1 on errors.")
     check.add_argument("dir", type=Path, metavar="DIR")
     where = check.add_mutually_exclusive_group()
-    where.add_argument("--robot", choices=["sim"], help="check against the simulated robot's nodes")
+    where.add_argument("--robot", metavar="ADDRESS",
+                       help="check against this robot's nodes: sim:// or a middleware URI")
     where.add_argument("--middleware", metavar="URI", help="check against the nodes present on this middleware")
-    check.add_argument("--wait", type=float, default=None, metavar="S",
-                       help=f"with --middleware: time for the nodes to announce themselves "
-                            f"(default {DEFAULT_WAIT_S:g} s)")
+    _add_wait_arg(check)
     check.set_defaults(run=run_check)
 
 
-def _spec(args: argparse.Namespace, *, audit: bool) -> RobotSpec:
-    if not args.sim_speed > 0:
-        raise ConfigError("--sim-speed must be positive")
-    audit_log: Path | None = None
-    if audit and not getattr(args, "no_audit_log", False):
-        audit_log = getattr(args, "audit_log", None) or default_audit_path()
-    return RobotSpec(sim=args.robot == "sim", middleware_uri=args.middleware, manifests=args.manifests,
-                     sim_speed=args.sim_speed, audit_log=audit_log)
+def _robot_config(args: argparse.Namespace) -> RobotConfig:
+    return robot_config_from_args(args, config_from_args(args))
 
 
-def _wait_s(args: argparse.Namespace) -> float:
+def _audit_log(args: argparse.Namespace, target: RobotAddress) -> Path | None:
+    if getattr(args, "no_audit_log", False):
+        return None
+    if not isinstance(target, LocalAddress):
+        if getattr(args, "audit_log", None) is not None:
+            raise ConfigError(f"--audit-log applies to a robot served here; the MCP server at {target} keeps its own")
+        return None
+    return getattr(args, "audit_log", None) or default_audit_path()
+
+
+def _wait_s(args: argparse.Namespace, target: RobotAddress) -> float:
     if args.wait is not None:
-        return max(0.0, float(args.wait))
-    return DEFAULT_WAIT_S if args.middleware else 0.0
+        return float(args.wait)
+    return DEFAULT_WAIT_S if isinstance(target, MiddlewareAddress) else 0.0
 
 
 def parse_arguments(pairs: Sequence[str]) -> dict[str, Any]:
@@ -192,28 +203,34 @@ def _run(main: Callable[[asyncio.Event], Awaitable[int]], *, graceful: bool = Fa
 
 
 @asynccontextmanager
-async def _robot(args: argparse.Namespace, *, audit: bool) -> AsyncIterator[Robot]:
-    async with open_robot(_spec(args, audit=audit)) as robot:
-        wait = _wait_s(args)
+async def _robot_side(args: argparse.Namespace, config: RobotConfig) -> AsyncIterator[RobotSide]:
+    address = config.local(f"robovoice {args.command}")
+    async with open_robot_side(address, manifests=config.manifests, audit_log=_audit_log(args, address)) as side:
+        wait = _wait_s(args, address)
         if wait > 0:
-            names = [args.tool] if getattr(args, "tool", None) else []
-            await wait_for_tools(robot.server, names=names, timeout=wait)
+            await wait_for_tools(side.server, timeout=wait)
+        yield side
+
+
+@asynccontextmanager
+async def _connection(args: argparse.Namespace, config: RobotConfig) -> AsyncIterator[RobotConnection]:
+    target = config.target()
+    names = [args.tool] if getattr(args, "tool", None) else []
+    async with connect_robot(config, audit_log=_audit_log(args, target), settle_s=_wait_s(args, target),
+                             tool_names=names, client_name=f"robovoice-{args.command}") as robot:
         yield robot
-
-
-def _client(robot: Robot, name: str) -> Client:
-    return Client(robot.server.server, mode="legacy", cache=None,
-                  client_info=types.Implementation(name=f"robovoice-{name}", version="cli"))
 
 
 def _dump(model: Any) -> Any:
     return model.model_dump(by_alias=True, mode="json", exclude_none=True)
 
 
-def _print_manifest_errors(robot: Robot, out: TextIO) -> None:
+def _print_manifest_errors(side: RobotSide | None, out: TextIO) -> None:
     from robovoice.manifest import format_error
 
-    for error in robot.server.catalog.errors():
+    if side is None:
+        return
+    for error in side.server.catalog.errors():
         print(f"warning: {format_error(error)}", file=out)
 
 
@@ -221,16 +238,18 @@ def _print_manifest_errors(robot: Robot, out: TextIO) -> None:
 
 
 def run_serve(args: argparse.Namespace) -> int:
+    config = _robot_config(args)
+    config.local("robovoice serve")  # before anything starts
     token = read_token_file(args.token_file) if args.token_file else None
     if args.transport == "http":
         check_bind(args.host, token)  # before starting anything
     elif token is not None:
         raise ConfigError("--token-file applies to --transport http only")
-    return _run(lambda stop: _serve(args, token, stop), graceful=True)
+    return _run(lambda stop: _serve(args, config, token, stop), graceful=True)
 
 
-async def _serve(args: argparse.Namespace, token: str | None, stop: asyncio.Event) -> int:
-    async with _robot(args, audit=True) as robot:
+async def _serve(args: argparse.Namespace, config: RobotConfig, token: str | None, stop: asyncio.Event) -> int:
+    async with _robot_side(args, config) as robot:
         _print_manifest_errors(robot, sys.stderr)
         if args.transport == "stdio":
             async with asyncio.TaskGroup() as group:  # until the client closes stdin, or a signal
@@ -251,12 +270,14 @@ async def _serve(args: argparse.Namespace, token: str | None, stop: asyncio.Even
 
 
 def run_tools(args: argparse.Namespace) -> int:
-    return _run(lambda stop: _tools(args))
+    args.no_audit_log = True  # listing calls no tool
+    config = _robot_config(args)
+    return _run(lambda stop: _tools(args, config))
 
 
-async def _tools(args: argparse.Namespace) -> int:
-    async with _robot(args, audit=False) as robot, _client(robot, "tools") as client:
-        listing = await client.list_tools()
+async def _tools(args: argparse.Namespace, config: RobotConfig) -> int:
+    async with _connection(args, config) as robot:
+        listing = await robot.tools.client.list_tools()
         if args.json:
             print(json.dumps([_dump(tool) for tool in listing.tools], indent=2, ensure_ascii=False))
         else:
@@ -267,7 +288,7 @@ async def _tools(args: argparse.Namespace) -> int:
                 print(f"{tool.name:<{width}}  ({params})  {first}")
             if not listing.tools:
                 print("no tools: no node with a manifest is present", file=sys.stderr)
-        _print_manifest_errors(robot, sys.stderr)
+        _print_manifest_errors(robot.side, sys.stderr)
     return 0
 
 
@@ -276,7 +297,8 @@ async def _tools(args: argparse.Namespace) -> int:
 
 def run_call(args: argparse.Namespace) -> int:
     arguments = parse_arguments(args.arguments)
-    return _run(lambda stop: _call(args, arguments))
+    config = _robot_config(args)
+    return _run(lambda stop: _call(args, config, arguments))
 
 
 def _describe(result: types.CallToolResult) -> str:
@@ -291,9 +313,11 @@ def _describe(result: types.CallToolResult) -> str:
     return "\n".join(lines)
 
 
-async def _call(args: argparse.Namespace, arguments: dict[str, Any]) -> int:
-    async with _robot(args, audit=True) as robot, _client(robot, "call") as client:
-        await wait_for_snapshots(robot.server, names=[args.tool], timeout=SNAPSHOT_WAIT_S)
+async def _call(args: argparse.Namespace, config: RobotConfig, arguments: dict[str, Any]) -> int:
+    async with _connection(args, config) as robot:
+        client = robot.tools.client
+        if robot.side is not None:
+            await wait_for_snapshots(robot.side.server, names=[args.tool], timeout=SNAPSHOT_WAIT_S)
         progress_out = sys.stderr
 
         async def show_progress(progress: float, total: float | None, message: str | None) -> None:
@@ -309,33 +333,31 @@ async def _call(args: argparse.Namespace, arguments: dict[str, Any]) -> int:
 
 
 def run_check(args: argparse.Namespace) -> int:
-    return _run(lambda stop: _check(args))
+    address = address_from_args(args)
+    if address is not None and not isinstance(address, LocalAddress):
+        raise ConfigError(f"check-manifests checks against the nodes themselves: give sim:// or a middleware URI, "
+                          f"not {address}")
+    return _run(lambda stop: _check(args, address))
 
 
-async def _check(args: argparse.Namespace) -> int:
-    if args.robot == "sim" or args.middleware:
-        middleware = open_middleware(args.middleware or "memory://")
-        await middleware.start()
-        try:
-            sim = await start_sim_robot(middleware) if args.robot == "sim" else None
-            try:
-                if args.middleware:
-                    await _wait_for_nodes(middleware, _wait_s(args))
-                report = check_manifest_dir(args.dir, dict(middleware.nodes()))
-            finally:
-                if sim is not None:
-                    await sim.stop()
-        finally:
-            await middleware.close()
-    else:
+async def _check(args: argparse.Namespace, address: LocalAddress | None) -> int:
+    if address is None:
         report = check_manifest_dir(args.dir)
+    else:
+        if isinstance(address, SimAddress):
+            address = SimAddress(None, address.nodes)  # speed does not matter here
+        async with open_robot_side(address, manifests=None, audit_log=None) as side:
+            if isinstance(address, MiddlewareAddress):
+                await _wait_for_nodes(side, _wait_s(args, address))
+            report = check_manifest_dir(args.dir, dict(side.middleware.nodes()))
     for line in report.lines():
         print(line)
     return 0 if report.ok else 1
 
 
-async def _wait_for_nodes(middleware: Any, timeout: float) -> None:
+async def _wait_for_nodes(side: RobotSide, timeout: float) -> None:
     """Give the nodes on a network middleware `timeout` s to announce themselves (until quiet)."""
+    middleware = side.middleware
     changed = asyncio.Event()
     watch = await middleware.watch(lambda event: changed.set())
     try:

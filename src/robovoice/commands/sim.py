@@ -13,7 +13,10 @@ import argparse
 import asyncio
 from typing import Any
 
+from robovoice.address import parse_middleware_uri
+from robovoice.commands.common import positive_float
 from robovoice.commands.signals import CancelOnSignals
+from robovoice.errors import ConfigError
 from robovoice.middleware import open_middleware
 from robovoice.sim import NODE_NAMES, SETUP_NAMES, SimRobot, run_sim_forever
 
@@ -26,10 +29,11 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
                     "middleware until SIGINT/SIGTERM. Prints one 'ready' line when the nodes are up.",
     )
     parser.add_argument("--middleware", default="zenoh://", metavar="URI",
-                        help="middleware URI (default: zenoh://, peer mode on 127.0.0.1:7447; see docs/zenoh.md)")
+                        help="middleware URI (default: zenoh://, peer mode on 127.0.0.1:7447; zenoh://HOST:PORT "
+                             "or zenoh://tcp/HOST:PORT; see docs/zenoh.md)")
     parser.add_argument("--node", action="append", dest="nodes", choices=NODE_NAMES, metavar="NAME",
                         help=f"run only this node (repeatable): {', '.join(NODE_NAMES)}")
-    parser.add_argument("--speed", type=float, default=1.0,
+    parser.add_argument("--speed", type=positive_float, default=1.0,
                         help="simulated seconds per real second (default 1)")
     parser.add_argument("--setup", default="",
                         help=f"state to establish first: {', '.join(SETUP_NAMES)}, combined with '+'")
@@ -37,9 +41,11 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
 
 
 def run(args: argparse.Namespace) -> int:
-    if args.speed <= 0:
-        raise SystemExit("robovoice sim: --speed must be positive")
-    return asyncio.run(_serve(args.middleware, args.nodes, args.speed, args.setup))
+    uri = parse_middleware_uri(args.middleware, "--middleware").uri  # a bad URI fails here, before anything starts
+    unknown = [part for part in args.setup.split("+") if part and part not in SETUP_NAMES]
+    if unknown or args.setup.strip("+") != args.setup or "++" in args.setup:
+        raise ConfigError(f"--setup {args.setup!r}: known setups are {', '.join(SETUP_NAMES)}, combined with '+'")
+    return asyncio.run(_serve(uri, args.nodes, args.speed, args.setup))
 
 
 async def _serve(uri: str, nodes: list[str] | None, speed: float, setup: str) -> int:

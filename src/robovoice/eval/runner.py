@@ -26,10 +26,12 @@ log = logging.getLogger(__name__)
 HEADLINE_STAGE = "first_sentence"
 
 
-class RobotLink(Protocol):
-    """A connected robot for one case: its MCP tools, and the sim for `setup`."""
+class CaseRobot(Protocol):
+    """A connected robot for one case (e.g. `assistant.connect.RobotConnection`): its MCP
+    tools, and the sim for `setup`."""
 
-    tools: RobotTools
+    @property
+    def tools(self) -> RobotTools: ...
 
     async def apply_setup(self, setup: str) -> None: ...
 
@@ -57,7 +59,7 @@ class ClipRunner(Protocol):
     async def run_clip(self, case: Case, backend: LLMBackend, tools: RobotTools) -> ClipOutcome: ...
 
 
-OpenRobot = Callable[[], AbstractAsyncContextManager[RobotLink]]
+OpenRobot = Callable[[], AbstractAsyncContextManager[CaseRobot]]
 
 
 @dataclass

@@ -3,7 +3,7 @@
 `asyncio.TaskGroup` (and anyio's, inside the SDK client) wrap an exception raised in their
 body in an `ExceptionGroup`. A context manager that owns background tasks while it yields
 would then hand its caller a group for the caller's *own* error (a `ConfigError` raised
-inside ``async with open_robot(...)`` would surface as ``ExceptionGroup``). `owned_tasks`
+inside ``async with open_robot_side(...)`` would surface as ``ExceptionGroup``). `owned_tasks`
 and `unwrapped` re-raise a lone exception (however deeply nested) as itself; several
 at once stay a group.
 """

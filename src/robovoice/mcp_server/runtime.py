@@ -1,9 +1,9 @@
-"""Putting a robot together: the middleware, the sim robot (or a real one over a URI), the
+"""The robot side: the middleware, the sim robot (or the nodes behind a middleware URI), the
 manifests, the audit log and the `RobotToolServer`, started and stopped as one.
 
-    async with open_robot(RobotSpec(sim=True, sim_speed=20)) as robot:
-        robot.server   # RobotToolServer, already following presence
-        robot.sim      # SimRobot, or None when the robot is on the far side of a middleware URI
+    async with open_robot_side(SimAddress(speed=20), manifests=None, audit_log=None) as side:
+        side.server   # RobotToolServer, already following presence
+        side.sim      # SimRobot, or None when the nodes are on the far side of a middleware URI
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ from contextlib import AsyncExitStack, asynccontextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
+from robovoice.address import LocalAddress, MiddlewareAddress, SimAddress
 from robovoice.errors import ConfigError
 from robovoice.manifest import ManifestSet, SnapshotEntry, format_error, load_manifest_dir
 from robovoice.mcp_server.audit import AuditLog
@@ -27,36 +28,15 @@ from robovoice.snapshot import SnapshotStore, UntrackedTopicError
 
 log = logging.getLogger(__name__)
 
-SIM_URI = "memory://"
+SIM_MIDDLEWARE = "memory://"
+DEFAULT_SIM_SPEED = 1.0  # simulated seconds per real second where neither address nor command says
 
 
 @dataclass(frozen=True, slots=True)
-class RobotSpec:
-    """Which robot to serve.
+class RobotSide:
+    """A robot served from this process: its `middleware`, the MCP `server` built from the
+    manifests of the nodes present, and the `sim` (None for nodes behind a middleware URI)."""
 
-    `sim`: run the sim robot in this process (on `middleware_uri`, by default the in-process
-    memory bus). Without `sim`, `middleware_uri` is required and the nodes live elsewhere.
-    `manifests`: a folder of manifests that replace the nodes' own (by node name).
-    `audit_log`: where the audit log goes (None: no audit log).
-    """
-
-    sim: bool = False
-    middleware_uri: str | None = None
-    manifests: Path | None = None
-    sim_speed: float = 1.0
-    sim_nodes: Collection[str] | None = None
-    audit_log: Path | None = None
-
-    def uri(self) -> str:
-        if self.middleware_uri is not None:
-            return self.middleware_uri
-        if self.sim:
-            return SIM_URI
-        raise ConfigError("say which robot: --robot sim, or --middleware URI (e.g. zenoh://127.0.0.1:7447)")
-
-
-@dataclass(frozen=True, slots=True)
-class Robot:
     middleware: Middleware
     server: RobotToolServer
     sim: SimRobot | None
@@ -75,22 +55,29 @@ def load_override(folder: Path | None) -> ManifestSet | None:
 
 
 @asynccontextmanager
-async def open_robot(spec: RobotSpec) -> AsyncIterator[Robot]:
-    """Start everything in `spec`; stop it all (sim, server, middleware) on the way out."""
-    override = load_override(spec.manifests)
-    middleware = open_middleware(spec.uri())
+async def open_robot_side(address: LocalAddress, *, manifests: Path | None,
+                          audit_log: Path | None) -> AsyncIterator[RobotSide]:
+    """Start the robot side `address` names (`manifests`: a folder replacing the nodes' own;
+    `audit_log`: a path, or None for none); stop it all (sim, server, middleware) on the way out."""
+    override = load_override(manifests)
+    match address:
+        case SimAddress():
+            middleware = open_middleware(SIM_MIDDLEWARE)
+        case MiddlewareAddress(uri=uri):
+            middleware = open_middleware(uri)
     async with AsyncExitStack() as stack:
         await middleware.start()
         stack.push_async_callback(middleware.close)
         sim: SimRobot | None = None
-        if spec.sim:
-            sim = await start_sim_robot(middleware, speed=spec.sim_speed, nodes=spec.sim_nodes)
+        if isinstance(address, SimAddress):
+            speed = DEFAULT_SIM_SPEED if address.speed is None else address.speed
+            sim = await start_sim_robot(middleware, speed=speed, nodes=address.nodes)
             stack.push_async_callback(sim.stop)
-        audit = AuditLog(spec.audit_log)
+        audit = AuditLog(audit_log)
         stack.callback(audit.close)
         server = RobotToolServer(middleware, manifests=override, audit=audit)
         await stack.enter_async_context(server.running())
-        yield Robot(middleware, server, sim)
+        yield RobotSide(middleware, server, sim)
 
 
 async def wait_for_snapshots(server: RobotToolServer, *, names: Collection[str] | None = None,

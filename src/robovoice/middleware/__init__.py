@@ -5,13 +5,20 @@ from __future__ import annotations
 from collections.abc import Callable
 from urllib.parse import urlsplit
 
-from robovoice.errors import UnsupportedURIError
+from robovoice.errors import ConfigError, UnsupportedURIError
 from robovoice.middleware.base import Middleware
+
+
+def _check_memory(uri: str) -> None:
+    if uri != "memory://":  # one bus per process: nothing to choose, so nothing may be written
+        raise ConfigError(f"middleware URI {uri!r}: the in-process bus takes no host, path or options; "
+                          f"write memory://")
 
 
 def _memory(uri: str) -> Middleware:
     from robovoice.middleware.memory import MemoryMiddleware
 
+    _check_memory(uri)
     return MemoryMiddleware(uri)
 
 
@@ -30,13 +37,28 @@ def _ros2(uri: str) -> Middleware:
 ADAPTERS: dict[str, Callable[[str], Middleware]] = {"memory": _memory, "zenoh": _zenoh, "ros2": _ros2}
 
 
+def check_middleware_uri(uri: str) -> None:
+    """Check `uri` without creating its adapter (no extra needed): the scheme always, and the
+    whole URI for the adapters whose URI parsers are plain code (memory, zenoh); the others
+    check theirs when opened."""
+    scheme = urlsplit(uri).scheme if "://" in uri else ""
+    if scheme not in ADAPTERS:
+        raise UnsupportedURIError(uri, [f"{s}://" for s in ADAPTERS], what="middleware URI")
+    if scheme == "memory":
+        _check_memory(uri)
+    elif scheme == "zenoh":
+        from robovoice.middleware.zenoh_config import ZenohSettings
+
+        ZenohSettings.from_uri(uri)
+
+
 def open_middleware(uri: str) -> Middleware:
     """Create (not yet start) the middleware adapter for `uri`."""
-    scheme = urlsplit(uri).scheme
+    scheme = urlsplit(uri).scheme if "://" in uri else ""
     factory = ADAPTERS.get(scheme)
     if factory is None:
-        raise UnsupportedURIError(uri, [f"{s}://" for s in ADAPTERS])
+        raise UnsupportedURIError(uri, [f"{s}://" for s in ADAPTERS], what="middleware URI")
     return factory(uri)
 
 
-__all__ = ["ADAPTERS", "Middleware", "open_middleware"]
+__all__ = ["ADAPTERS", "Middleware", "check_middleware_uri", "open_middleware"]

@@ -185,7 +185,8 @@ async def _bench_mcp(calls: int) -> tuple[Stats, Stats]:
     import mcp_types as types
     from mcp import Client
 
-    from robovoice.mcp_server import RobotSpec, open_robot, wait_for_tools
+    from robovoice.address import MiddlewareAddress, SimAddress
+    from robovoice.mcp_server import open_robot_side, wait_for_tools
 
     port = _free_port()
     uri = f"zenoh://127.0.0.1:{port}?robot=bench-mcp"
@@ -193,9 +194,9 @@ async def _bench_mcp(calls: int) -> tuple[Stats, Stats]:
     tool = "get_navigation_targets"
     info = types.Implementation(name="robovoice-bench", version="bench")
     async with (
-        open_robot(RobotSpec(middleware_uri=uri)) as over_zenoh,
+        open_robot_side(MiddlewareAddress(uri), manifests=None, audit_log=None) as over_zenoh,
         _child(argv, "ready"),
-        open_robot(RobotSpec(sim=True, sim_nodes=["navigation"])) as in_memory,
+        open_robot_side(SimAddress(nodes=("navigation",)), manifests=None, audit_log=None) as in_memory,
     ):
         await wait_for_tools(over_zenoh.server, names=[tool], timeout=10)
         async with (

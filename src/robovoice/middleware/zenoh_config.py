@@ -2,6 +2,8 @@
 
     zenoh://                                  peer, rendezvous on tcp/127.0.0.1:7447 (below)
     zenoh://HOST:PORT                         peer, rendezvous on tcp/HOST:PORT
+    zenoh://tcp/HOST:PORT                     the same, in Zenoh's own endpoint syntax (udp/ too)
+    zenoh://[::1]:PORT                        an IPv6 host, in brackets
     zenoh://HOST:PORT?mode=client             client of the router/peer listening on HOST:PORT
     zenoh://?listen=tcp/127.0.0.1:7448&connect=tcp/127.0.0.1:7447   exactly these endpoints
     zenoh://?config=/path/zenoh.json5         a Zenoh config file; other parameters override it
@@ -10,7 +12,12 @@ Parameters: ``robot`` (key prefix ``robovoice/<robot>``, default ``default``), `
 (peer | client | router), ``listen`` and ``connect`` (Zenoh endpoints; repeat the parameter
 or separate with commas), ``scouting`` (off | multicast; default off), ``must_connect``
 (true: fail at start unless a connect endpoint answers; always so in client mode),
-``timeout`` (seconds to wait for a connect endpoint at start, default 3), ``config``.
+``timeout`` (seconds to wait for a connect endpoint at start, default 3), ``config`` (a
+Zenoh config file, which must exist). Endpoints are ``PROTOCOL/ADDRESS`` (``tcp/HOST:PORT``,
+``udp/…``, ``tls/…``, ``quic/…``, ``ws/…``, ``unixsock-stream/PATH``, ...). Anything else —
+an unknown parameter, an empty value, a path, a user name, a port out of range — is an error
+that shows the right form: a URI that cannot mean what was written never starts a session
+that meets nobody.
 
 *Rendezvous*: every peer connects to ``HOST:PORT``; a peer that is given no ``listen`` also
 listens there if the port is free (the first process on the machine takes it) and on an
@@ -23,9 +30,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal, cast
-from urllib.parse import parse_qs, urlsplit
+from urllib.parse import urlsplit
 
 from robovoice.errors import ConfigError
+from robovoice.urls import check_port, query_options, split_host_port
 
 Mode = Literal["peer", "client", "router"]
 DEFAULT_HOST = "127.0.0.1"
@@ -34,7 +42,13 @@ DEFAULT_ROBOT = "default"
 DEFAULT_TIMEOUT_S = 3.0
 _KNOWN = {"robot", "mode", "listen", "connect", "scouting", "must_connect", "timeout", "config"}
 _TRUE = {"1", "true", "yes", "on"}
-_FALSE = {"0", "false", "no", "off", ""}
+_FALSE = {"0", "false", "no", "off"}
+_MANY = ("listen", "connect")
+# Zenoh's link protocols; the ones before the line take HOST:PORT
+_IP_PROTOCOLS = ("tcp", "udp", "tls", "quic", "ws")
+_PROTOCOLS = (*_IP_PROTOCOLS, "unixsock-stream", "unixpipe", "serial", "vsock")
+_RENDEZVOUS_PROTOCOLS = ("tcp", "udp")
+FORM = "zenoh://HOST:PORT (e.g. zenoh://127.0.0.1:7447, or zenoh://tcp/127.0.0.1:7447)"
 
 
 @dataclass(frozen=True, slots=True)
@@ -58,22 +72,25 @@ class ZenohSettings:
     @classmethod
     def from_uri(cls, uri: str) -> ZenohSettings:
         parts = urlsplit(uri)
-        if parts.scheme != "zenoh":
-            raise ConfigError(f"not a zenoh:// URI: {uri!r}")
-        query = parse_qs(parts.query, keep_blank_values=True)
-        unknown = sorted(set(query) - _KNOWN)
-        if unknown:
-            raise ConfigError(f"{uri}: unknown parameter(s) {', '.join(unknown)}; "
-                              f"known: {', '.join(sorted(_KNOWN))}")
+        if parts.scheme != "zenoh" or not uri.startswith("zenoh://"):
+            raise ConfigError(f"not a zenoh:// URI: {uri!r}; write {FORM}")
+        if parts.fragment:
+            raise ConfigError(f"{uri}: unexpected '#{parts.fragment}'; write {FORM}")
+        query = query_options(parts, uri, _KNOWN, repeatable=_MANY)
 
         def one(name: str, default: str) -> str:
             values = query.get(name, [default])
-            if len(values) > 1:
-                raise ConfigError(f"{uri}: parameter {name!r} given {len(values)} times")
             return values[0]
 
         def many(name: str) -> tuple[str, ...]:
-            return tuple(ep.strip() for value in query.get(name, []) for ep in value.split(",") if ep.strip())
+            endpoints: list[str] = []
+            for value in query.get(name, []):
+                for ep in value.split(","):
+                    if not ep.strip():
+                        raise ConfigError(f"{uri}: an empty {name} endpoint in {value!r}; "
+                                          f"write {name}=tcp/HOST:PORT[,tcp/HOST:PORT]")
+                    endpoints.append(_endpoint(uri, name, ep.strip()))
+            return tuple(endpoints)
 
         mode = one("mode", "peer")
         if mode not in ("peer", "client", "router"):
@@ -85,8 +102,11 @@ class ZenohSettings:
         if not robot:
             raise ConfigError(f"{uri}: robot must not be empty")
         config = one("config", "")
+        if "config" in query and not Path(config).expanduser().is_file():
+            raise ConfigError(f"{uri}: config={config!r} is not a file; give the path of a Zenoh config "
+                              f"(JSON5) file")
         listen, connect = many("listen"), many("connect")
-        rendezvous = _rendezvous(uri, parts.netloc, explicit=bool(listen or connect or config))
+        rendezvous = _rendezvous(uri, parts.netloc, parts.path, explicit=bool(listen or connect or config))
         if mode == "client" and rendezvous is None and not connect and not config:
             raise ConfigError(f"{uri}: client mode needs an endpoint to connect to (zenoh://HOST:PORT?mode=client)")
         return cls(
@@ -99,7 +119,7 @@ class ZenohSettings:
             multicast_scouting=scouting == "multicast",
             must_connect=mode == "client" or _flag(uri, "must_connect", one("must_connect", "false")),
             timeout_s=_seconds(uri, one("timeout", str(DEFAULT_TIMEOUT_S))),
-            config_file=Path(config) if config else None,
+            config_file=Path(config).expanduser() if config else None,
             explicit=frozenset(query),
         )
 
@@ -147,15 +167,44 @@ class ZenohSettings:
         return entries
 
 
-def _rendezvous(uri: str, netloc: str, *, explicit: bool) -> str | None:
+def _rendezvous(uri: str, netloc: str, path: str, *, explicit: bool) -> str | None:
+    """``tcp/HOST:PORT`` from ``zenoh://HOST:PORT`` or Zenoh's ``zenoh://tcp/HOST:PORT``."""
+    protocol = "tcp"
+    if path not in ("", "/"):
+        if netloc in _RENDEZVOUS_PROTOCOLS:  # zenoh://tcp/127.0.0.1:7447: Zenoh's endpoint syntax
+            protocol, netloc = netloc, path[1:].rstrip("/")
+            if not netloc or "/" in netloc:
+                raise ConfigError(f"{uri}: expected zenoh://{protocol}/HOST:PORT; write {FORM}")
+        elif netloc in _PROTOCOLS:
+            raise ConfigError(f"{uri}: a {netloc}/ endpoint cannot be the rendezvous; give it explicitly, "
+                              f"e.g. zenoh://?connect={netloc}{path}&mode=client")
+        else:
+            raise ConfigError(f"{uri}: unexpected path {path!r}; write {FORM}")
     if not netloc:
-        return None if explicit else f"tcp/{DEFAULT_HOST}:{DEFAULT_PORT}"
-    host, sep, port = netloc.rpartition(":")
-    if not sep:
-        host, port = netloc, str(DEFAULT_PORT)
-    if not host or not port.isdigit() or not 0 < int(port) < 65536:
-        raise ConfigError(f"{uri}: expected zenoh://HOST:PORT, got {netloc!r}")
-    return f"tcp/{host}:{port}"
+        return None if explicit else f"{protocol}/{DEFAULT_HOST}:{DEFAULT_PORT}"
+    try:
+        host, port = split_host_port(netloc, uri, FORM)
+    except ConfigError as exc:
+        raise ConfigError(f"{exc}; expected {FORM}, got {netloc!r}") from None
+    return f"{protocol}/{host}:{DEFAULT_PORT if port is None else port}"
+
+
+def _endpoint(uri: str, name: str, endpoint: str) -> str:
+    """A Zenoh endpoint ``PROTOCOL/ADDRESS`` (port 0 allowed only for listen)."""
+    protocol, sep, address = endpoint.partition("/")
+    if not sep or protocol not in _PROTOCOLS or not address:
+        raise ConfigError(f"{uri}: {name} endpoint {endpoint!r} is not PROTOCOL/ADDRESS; write e.g. "
+                          f"{name}=tcp/127.0.0.1:7447 (protocols: {', '.join(_PROTOCOLS)})")
+    if protocol in _IP_PROTOCOLS:
+        hostport = address.split("#", 1)[0].split("?", 1)[0]
+        host, colon, port = hostport.rpartition(":")
+        if not colon or not host:
+            raise ConfigError(f"{uri}: {name} endpoint {endpoint!r} needs HOST:PORT, e.g. {protocol}/127.0.0.1:7447")
+        if ":" in host and not host.startswith("["):
+            raise ConfigError(f"{uri}: {name} endpoint {endpoint!r}: write an IPv6 address in brackets, "
+                              f"e.g. {protocol}/[::1]:7447")
+        check_port(port, f"{uri}: {name} endpoint {endpoint!r}", allow_zero=name == "listen")
+    return endpoint
 
 
 def _flag(uri: str, name: str, value: str) -> bool:
