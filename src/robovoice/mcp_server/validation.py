@@ -6,18 +6,10 @@ from collections.abc import Mapping
 from typing import Any
 
 from jsonschema import Draft202012Validator
-from jsonschema.exceptions import ValidationError
 
 from robovoice.errors import InvalidArgumentsError
 
 _MAX_ERRORS = 10
-
-
-def _json_path(error: ValidationError) -> str:
-    path = "$"
-    for part in error.absolute_path:
-        path += f"[{part}]" if isinstance(part, int) else f".{part}"
-    return path
 
 
 class ArgumentValidator:
@@ -34,7 +26,7 @@ class ArgumentValidator:
         errors = sorted(self._validator.iter_errors(dict(arguments)), key=lambda e: list(e.absolute_path))
         if not errors:
             return
-        listed = [{"path": _json_path(e), "message": e.message} for e in errors[:_MAX_ERRORS]]
+        listed = [{"path": e.json_path, "message": e.message} for e in errors[:_MAX_ERRORS]]
         first = listed[0]
         raise InvalidArgumentsError(
             f"invalid arguments for {self.tool}: {first['path']}: {first['message']}",
