@@ -63,6 +63,19 @@ def test_reads_float_wav_through_soundfile(tmp_path: Path) -> None:
     np.testing.assert_array_equal(chunk.samples, float32_to_int16(x).clip(-32768, 32767))
 
 
+def test_reads_32_bit_pcm_and_a_law_stereo(tmp_path: Path) -> None:
+    import soundfile as sf
+
+    values = np.array([0, 1 << 30, -(1 << 31), (1 << 31) - 1], dtype=np.int32)
+    sf.write(str(tmp_path / "p32.wav"), values, 8000, subtype="PCM_32")
+    np.testing.assert_array_equal(read_wav(tmp_path / "p32.wav").samples, [0, 16384, -32768, 32767])
+    stereo = np.array([[0.0, 0.5], [-0.5, 0.25]], dtype=np.float32)
+    sf.write(str(tmp_path / "alaw.wav"), stereo, 8000, subtype="ALAW")
+    chunk = read_wav(tmp_path / "alaw.wav")
+    assert chunk.format == AudioFormat(8000, 2, 2) and chunk.samples.shape == (2, 2)
+    np.testing.assert_allclose(chunk.samples / 32768, stereo, atol=0.02)  # A-law is lossy
+
+
 def test_missing_or_bad_file_raises_audio_error(tmp_path: Path) -> None:
     with pytest.raises(AudioError, match="cannot open"):
         read_wav(tmp_path / "missing.wav")

@@ -1,8 +1,8 @@
 """WAV files as audio sources and sinks, and an in-memory sink: the fakes of the I/O seams.
 
-Integer PCM WAV (8/16/24/32-bit) is read with the standard library; other encodings
-(32/64-bit float, A-law, and whatever else libsndfile reads) need `soundfile` (in the
-``robovoice[voice]`` extra). Everything is delivered as int16.
+Files are read with `soundfile` (libsndfile, in the ``robovoice[voice]`` extra): integer PCM
+WAV of any width, float WAV, A-law, and whatever else libsndfile reads, all delivered as int16.
+They are written as 16-bit PCM WAV with the standard library's `wave`.
 """
 
 from __future__ import annotations
@@ -26,87 +26,30 @@ _INSTALL = "pip install 'robovoice[voice]'"
 
 # --- reading ----------------------------------------------------------------------------
 
-
-def _pcm_to_int16(raw: bytes, sampwidth: int, channels: int) -> Int16Array:
-    if sampwidth == 1:  # unsigned 8-bit
-        out = (np.frombuffer(raw, dtype=np.uint8).astype(np.int16) - 128) << 8
-    elif sampwidth == 2:
-        out = np.frombuffer(raw, dtype="<i2").astype(np.int16)
-    elif sampwidth == 3:
-        b = np.frombuffer(raw, dtype=np.uint8).reshape(-1, 3)
-        out = ((b[:, 2].astype(np.int8).astype(np.int16) << 8) | b[:, 1].astype(np.int16)).astype(np.int16)
-    elif sampwidth == 4:
-        out = (np.frombuffer(raw, dtype="<i4") >> 16).astype(np.int16)
-    else:
-        raise AudioError(f"unsupported PCM sample width {sampwidth}")
-    return out.reshape(-1, channels) if channels > 1 else out
-
-
-_PCM = 1
-_EXTENSIBLE = 0xFFFE
-
-
-def _wav_format_tag(path: Path) -> int | None:
-    """The format tag of a RIFF/WAVE file (1 = integer PCM; for WAVE_FORMAT_EXTENSIBLE the
-    sub-format's), or None when the file is not RIFF/WAVE."""
-    try:
-        with path.open("rb") as f:
-            head = f.read(12)
-            if len(head) < 12 or head[:4] != b"RIFF" or head[8:12] != b"WAVE":
-                return None
-            while True:
-                hdr = f.read(8)
-                if len(hdr) < 8:
-                    return None
-                size = int.from_bytes(hdr[4:8], "little")
-                if hdr[:4] == b"fmt ":
-                    fmt = f.read(size)
-                    tag = int.from_bytes(fmt[0:2], "little")
-                    if tag == _EXTENSIBLE and len(fmt) >= 26:
-                        tag = int.from_bytes(fmt[24:26], "little")
-                    return tag
-                f.seek(size + (size & 1), 1)
-    except OSError as exc:
-        raise AudioError(f"cannot open WAV file {path}: {exc}") from exc
+# Integer PCM is read as int16 by libsndfile itself (8-bit unsigned centred, 24/32-bit shifted
+# down); everything else (float, A-law, ...) as float32, converted here: libsndfile does not
+# scale float data read as integers.
+_INTEGER_PCM = frozenset({"PCM_U8", "PCM_S8", "PCM_16", "PCM_24", "PCM_32"})
 
 
 def _iter_wav(path: Path, frames_per_read: int) -> tuple[AudioFormat, int, Iterator[Int16Array]]:
-    """(format as int16, total frames, iterator of int16 blocks) for any readable WAV."""
-    if _wav_format_tag(path) != _PCM:
-        return _iter_soundfile(path, frames_per_read)
-    try:
-        wf = wave.open(str(path), "rb")  # noqa: SIM115 (closed by the generator below)
-    except (wave.Error, EOFError) as exc:
-        raise AudioError(f"cannot read WAV file {path}: {exc}") from exc
-    fmt = AudioFormat(rate=wf.getframerate(), width=2, channels=wf.getnchannels())
-    total = wf.getnframes()
-
-    def blocks() -> Iterator[Int16Array]:
-        with wf:
-            while True:
-                raw = wf.readframes(frames_per_read)
-                if not raw:
-                    return
-                yield _pcm_to_int16(raw, wf.getsampwidth(), fmt.channels)
-
-    return fmt, total, blocks()
-
-
-def _iter_soundfile(path: Path, frames_per_read: int) -> tuple[AudioFormat, int, Iterator[Int16Array]]:
+    """(format as int16, total frames, iterator of int16 blocks) for any file libsndfile reads."""
     try:
         import soundfile as sf
-    except ImportError as exc:  # also OSError when libsndfile is missing
-        raise MissingDependencyError(f"reading non-PCM WAV file {path}", _INSTALL) from exc
+    except (ImportError, OSError) as exc:  # OSError: the libsndfile library is missing
+        raise MissingDependencyError(f"reading the audio file {path}", _INSTALL) from exc
     try:
         info = sf.info(str(path))
     except RuntimeError as exc:  # soundfile.LibsndfileError derives from RuntimeError
-        raise AudioError(f"cannot read audio file {path}: {exc}") from exc
+        what = "open" if not path.exists() else "read"
+        raise AudioError(f"cannot {what} audio file {path}: {exc}") from exc
     fmt = AudioFormat(rate=int(info.samplerate), width=2, channels=int(info.channels))
+    as_int = info.subtype in _INTEGER_PCM
 
     def blocks() -> Iterator[Int16Array]:
-        # read as float and convert here: libsndfile does not scale float data read as int
-        for block in sf.blocks(str(path), blocksize=frames_per_read, dtype="float32", always_2d=False):
-            yield float32_to_int16(block)
+        for block in sf.blocks(str(path), blocksize=frames_per_read, dtype="int16" if as_int else "float32",
+                               always_2d=False):
+            yield block if as_int else float32_to_int16(block)
 
     return fmt, int(info.frames), blocks()
 
