@@ -28,6 +28,7 @@ from robovoice.commands.common import (
     robot_config_from_args,
     warm_up,
 )
+from robovoice.commands.text import one_line
 from robovoice.errors import ConfigError
 from robovoice.eval.cases import load_cases
 from robovoice.eval.runner import CaseResult, run_eval
@@ -55,11 +56,6 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     ev.set_defaults(run=run_eval_command)
 
 
-def _short(text: str, limit: int = 160) -> str:
-    text = " ".join(text.split())
-    return text if len(text) <= limit else text[: limit - 1] + "…"
-
-
 class ChatPrinter:
     """Prints a turn as it happens; progress lines at most once a second per tool."""
 
@@ -74,7 +70,7 @@ class ChatPrinter:
                 print(f"  → {name}({args})", file=self.out, flush=True)
             case ToolReturned(name=name, text=text, is_error=is_error, duration_ms=ms):
                 tag = "error" if is_error else "ok"
-                print(f"  ← {name} {tag} ({ms:.0f} ms): {_short(text)}", file=self.out, flush=True)
+                print(f"  ← {name} {tag} ({ms:.0f} ms): {one_line(text, 160)}", file=self.out, flush=True)
             case ToolProgressed(name=name, message=message) if message:
                 now = time.monotonic()
                 if now - self._last_progress.get(name, 0.0) >= 1.0:
@@ -83,7 +79,7 @@ class ChatPrinter:
             case SentenceReady(text=text):
                 print(f"robot> {text}", file=self.out, flush=True)
             case BackendFailed(reason=reason):
-                print(f"  ! no language model answered: {_short(reason, 300)}", file=self.out, flush=True)
+                print(f"  ! no language model answered: {one_line(reason, 300)}", file=self.out, flush=True)
             case _:
                 pass
 

@@ -29,6 +29,7 @@ from robovoice.commands.common import (
     warm_up,
 )
 from robovoice.commands.signals import CancelOnSignals
+from robovoice.commands.text import one_line as _short
 from robovoice.errors import ConfigError
 
 _STAGES = (("transcript", "transcript"), ("first_token", "first token"), ("tool_call", "tool call"),
@@ -66,11 +67,6 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
 
 
 # --- the live transcript --------------------------------------------------------------------------
-
-
-def _short(text: str, limit: int = 110) -> str:
-    text = " ".join(text.split())
-    return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
 def _args(arguments: dict[str, Any]) -> str:
