@@ -26,8 +26,8 @@ SIM_TOOLS = frozenset({
     "navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock", "stop_robot",
     "set_projector_power", "start_video_call", "end_video_call", "list_contacts",
     "get_battery_state", "get_robot_pose", "get_camera_image",
-})
-NAVIGATION_TOOLS = {"navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock"}
+}) | {"get_map", "get_call_state", "get_projector_state"}  # + tools for people (the console), not the model
+NAVIGATION_TOOLS = {"navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock", "get_map"}
 
 
 @dataclass

@@ -21,7 +21,7 @@ SIM_TOOLS = frozenset({
     "navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock", "stop_robot",
     "set_projector_power", "start_video_call", "end_video_call", "list_contacts",
     "get_battery_state", "get_robot_pose", "get_camera_image",
-})
+}) | {"get_map", "get_call_state", "get_projector_state"}  # + tools for people (the console), not the model
 SIM_PLACES = ["kitchen", "living room", "bedroom", "bathroom", "hallway", "front door", "charging dock"]
 # RPCs on the sim nodes that no manifest declares (some safety-critical).
 UNDECLARED_RPCS = ("set_max_speed", "disable_collision_avoidance", "enable_collision_avoidance",

@@ -149,7 +149,7 @@ async def test_bad_manifests_leave_the_other_tools_served(tmp_path: Path) -> Non
     async with (open_robot_side(SimAddress(speed=50), manifests=folder, audit_log=None) as robot,
                 Client(robot.server.server, mode="legacy") as client):
         names = {t.name for t in (await client.list_tools()).tools}
-        navigation = {"navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock"}
+        navigation = {"navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock", "get_map"}
         assert names == SIM_TOOLS - navigation - {"stop_robot"}  # the battery snapshot of base stays
         errors = robot.server.catalog.errors()
         sources = {Path(e.source).parent.name for e in errors}

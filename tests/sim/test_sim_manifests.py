@@ -34,6 +34,9 @@ SNAPSHOTS: dict[str, tuple[str, float]] = {  # name -> (topic, max_age_s)
     "get_robot_pose": ("pose", 1),
     "get_camera_image": ("camera", 2),
 }
+# Tools for people and programs (the console's map and status), marked "for_model": false:
+# MCP lists them, the model never sees them.
+OPERATOR_TOOLS = {"get_map": "navigation", "get_call_state": "communication", "get_projector_state": "projector"}
 
 
 def _manifests() -> dict[str, Manifest]:
@@ -50,8 +53,10 @@ def test_one_valid_manifest_per_node() -> None:
 
 
 def test_exactly_the_design_tool_surface() -> None:
-    tools = {t.name: t for m in _manifests().values() for t in m.tools}
-    snapshots = {s.name: s for m in _manifests().values() for s in m.snapshots}
+    operator = {d.name: node for node, m in _manifests().items() for d in (*m.tools, *m.snapshots) if not d.for_model}
+    assert operator == OPERATOR_TOOLS
+    tools = {t.name: t for m in _manifests().values() for t in m.tools if t.for_model}
+    snapshots = {s.name: s for m in _manifests().values() for s in m.snapshots if s.for_model}
     assert {name: set(t.parameters.get("properties", {})) for name, t in tools.items()} == TOOLS
     assert {name: (s.topic, s.max_age_s) for name, s in snapshots.items()} == SNAPSHOTS
     for tool in tools.values():
@@ -93,7 +98,7 @@ async def test_manifests_match_the_live_nodes(bus: MemoryMiddleware, start: Star
             assert snapshot.topic in info.topics
     report = check_manifest_dir(MANIFEST_DIR, nodes)
     assert report.ok, report.lines()
-    assert sorted(report.tools) == sorted([*TOOLS, *SNAPSHOTS])
+    assert sorted(report.tools) == sorted([*TOOLS, *SNAPSHOTS, *OPERATOR_TOOLS])
 
 
 @pytest.mark.parametrize("node", NODE_NAMES)

@@ -13,6 +13,8 @@
 - RPC `cancel()`: halts the drive under way; with none, fails with `not_driving` (so the
   model can say "I wasn't driving" rather than claim it stopped something).
 - RPC `get_status()`: driving or not, target, distances, nearest place.
+- topic `map` (1 Hz sim): the places with their coordinates and the drivable ways
+  (`world.map_message`), as a real robot publishes its map.
 """
 
 from __future__ import annotations
@@ -43,6 +45,7 @@ from robovoice.sim.world import (
     Point,
     find_place,
     known_places,
+    map_message,
     nearest_place,
     route,
     route_length,
@@ -51,6 +54,8 @@ from robovoice.sim.world import (
 log = logging.getLogger(__name__)
 
 NAME = "navigation"
+MAP_TOPIC = "map"
+MAP_PERIOD_S = 1.0
 TICK_S = 0.1
 FEEDBACK_PERIOD_S = 0.25
 HALT_WAIT_S = 2.0  # real seconds a cancel waits for the drive loop to end
@@ -103,7 +108,7 @@ class NavigationNode:
         return self._drive.place.name if self._drive else None
 
     def node_info(self) -> NodeInfo:
-        return make_node_info(NAME, RPCS)
+        return make_node_info(NAME, RPCS, (MAP_TOPIC,))
 
     def rpc_handlers(self) -> Mapping[str, RpcHandler]:
         return {"list_targets": self._list_targets, "cancel": self._cancel, "get_status": self._get_status}
@@ -112,7 +117,9 @@ class NavigationNode:
         return {"drive_to": self._drive_to}
 
     async def run(self, host: NodeHost) -> None:
-        return None  # nothing in the background: drives run in the callers' action calls
+        """Publish the map (drives run in the callers' action calls)."""
+        async for _ in self._clock.ticks(MAP_PERIOD_S):
+            host.publish(MAP_TOPIC, map_message())
 
     # --- checks ----------------------------------------------------------------------
     def _resolve(self, target: str) -> Place:

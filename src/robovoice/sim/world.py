@@ -153,3 +153,25 @@ def route(start: Point, goal: Point) -> list[Point]:
 
 def route_length(points: list[Point]) -> float:
     return sum(a.distance_to(b) for a, b in itertools.pairwise(points))
+
+
+FLAT_WIDTH_M = 12.0
+FLAT_DEPTH_M = 8.0
+
+
+def map_message() -> dict[str, object]:
+    """The map as the navigation node publishes it on its ``map`` topic (as a real robot
+    publishes its map with named places): the flat's bounds, the drivable ways (the hallway
+    and each place's spur) and the places, with their coordinates and whether they can be
+    reached. Metres, x to the right, y up."""
+    along = [p.position.x for p in PLACES if p.reachable]
+    ways = [[[min(along), HALLWAY_Y], [max(along), HALLWAY_Y]]]
+    ways += [[[p.door.x, p.door.y], [p.position.x, p.position.y]] for p in PLACES
+             if p.reachable and p.position.y != HALLWAY_Y]
+    return {
+        "frame": "map",
+        "bounds": {"min_x": 0.0, "min_y": 0.0, "max_x": FLAT_WIDTH_M, "max_y": FLAT_DEPTH_M},
+        "ways": ways,
+        "places": [{"name": p.name, "x": p.position.x, "y": p.position.y, "reachable": p.reachable,
+                    "blocked": p.blocked, "description": p.description} for p in PLACES],
+    }

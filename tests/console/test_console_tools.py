@@ -1,0 +1,46 @@
+"""Tools for people, not the model: the sim publishes its map (and call and projector state)
+through MCP tools marked ``"for_model": false``; the assistant still sees exactly DESIGN.md's 12."""
+
+from __future__ import annotations
+
+import httpx
+
+from robovoice.assistant.connect import connect_robot
+from robovoice.manifest.model import FOR_MODEL_META_KEY
+
+from .console_testkit import BOUND_S, SIM, running_console
+
+MODEL_TOOLS = {
+    "navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock", "stop_robot",
+    "set_projector_power", "start_video_call", "end_video_call", "list_contacts",
+    "get_battery_state", "get_robot_pose", "get_camera_image",
+}
+OPERATOR_TOOLS = {"get_map", "get_call_state", "get_projector_state"}
+
+
+async def test_the_assistant_sees_exactly_the_twelve_tools_and_mcp_lists_the_map_too() -> None:
+    async with connect_robot(SIM) as robot:
+        assert {spec.name for spec in await robot.tools.specs()} == MODEL_TOOLS
+        listing = (await robot.tools.client.list_tools()).tools
+        assert {t.name for t in listing} == MODEL_TOOLS | OPERATOR_TOOLS
+        for tool in listing:
+            assert ((tool.meta or {}).get(FOR_MODEL_META_KEY) is False) == (tool.name in OPERATOR_TOOLS)
+        result = await robot.tools.client.call_tool("get_map", {})
+        assert isinstance(result.structured_content, dict)
+        places = {p["name"]: p for p in result.structured_content["value"]["places"]}
+        assert (places["kitchen"]["x"], places["kitchen"]["y"], places["kitchen"]["reachable"]) == (2.0, 6.5, True)
+        assert places["balcony"]["reachable"] is False and places["balcony"]["blocked"]
+
+
+async def test_the_console_draws_from_the_robots_own_tools() -> None:
+    async with running_console() as run, httpx.AsyncClient(base_url=run.base, timeout=BOUND_S) as http:
+        tools = {t["name"]: t for t in (await http.get("/api/tools")).json()["tools"]}
+        assert {n for n, t in tools.items() if not t["for_model"]} == OPERATOR_TOOLS
+        await run.console.watcher.refresh_tools()
+        for item in run.console.watcher._watched:
+            await run.console.watcher.read(item)
+        robot = (await http.get("/api/state")).json()["robot"]
+        assert {p["name"] for p in robot["map"]["places"]} >= {"kitchen", "balcony", "charging dock"}
+        assert robot["call"]["in_call"] is False and robot["projector"] == {"on": False}
+        assert robot["battery"]["percent"] > 0 and robot["camera"]["mime"] == "image/jpeg"
+        assert not robot["errors"]
