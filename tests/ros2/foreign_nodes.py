@@ -32,8 +32,14 @@ DEPTH = QoSProfile(depth=100)
 STEP_S = 0.1
 
 
+_PRINT = threading.Lock()
+
+
 def say(text: str) -> None:
-    print(text, flush=True)
+    """One whole line (callbacks run on several threads: lines must not interleave)."""
+    with _PRINT:
+        sys.stdout.write(text + "\n")
+        sys.stdout.flush()
 
 
 def projector() -> Node:

@@ -90,6 +90,14 @@ class Foreign:
     def count(self, needle: str) -> int:
         return sum(needle in line for line in self.lines)
 
+    async def counted(self, needle: str, n: int, bound: float = BOUND_S) -> int:
+        """The count of lines with `needle` once it reaches `n` (lines arrive through a pipe,
+        after the answer); fails after `bound` seconds."""
+        deadline = time.monotonic() + bound
+        while (found := self.count(needle)) < n and time.monotonic() < deadline:
+            await asyncio.sleep(0.01)
+        return found
+
     def output(self) -> str:
         return "\n".join(self.lines[-60:])
 

@@ -35,7 +35,7 @@ async def test_service_action_and_snapshots_through_mcp(ros: RosWorld) -> None:
 
         on = await served.client.call_tool("set_projector_power", {"on": True})
         assert not on.is_error and body(on) == {"success": True, "message": "projector on"}
-        assert robot.count("request /projector/set_power data=True") == 1
+        assert await robot.counted("request /projector/set_power data=True", 1) == 1
 
         seen: list[tuple[float, str | None]] = []
 
@@ -78,14 +78,14 @@ async def test_named_choices_fixed_fields_and_refusals_before_sending(ros: RosWo
         await wait_tools(served, {"count_fibonacci", "count_named", "echo_basic"})
         named = await served.client.call_tool("count_named", {"length": "short"})
         assert not named.is_error and body(named)["sequence"] == [0, 1, 1, 2]
-        assert robot.count("goal /fibonacci order=3") == 1
+        assert await robot.counted("goal /fibonacci order=3", 1) == 1
         unknown = await served.client.call_tool("count_named", {"length": "medium"})
         assert unknown.is_error and body(unknown)["error"] == "invalid_arguments"
 
         echo = await served.client.call_tool("echo_basic", {"int8_value": -5, "float32_value": 1.5})
         assert not echo.is_error
         assert body(echo)["int8_value"] == -5 and body(echo)["string_value"] == "fixed"
-        sent = robot.count("request /basic/echo")
+        sent = await robot.counted("request /basic/echo", 1)
         for bad in ({"int8_value": 300}, {"uint8_value": -1}, {"float32_value": "abc"},
                     {"int16_value": 1.5}, {"bool_value": 1}, {"string_value": "x"}, {"float32_value": 1e39}):
             refused = await served.client.call_tool("echo_basic", bad)
@@ -94,7 +94,7 @@ async def test_named_choices_fixed_fields_and_refusals_before_sending(ros: RosWo
         # an integral float in a float field is converted, not zeroed (rclpy would send 0.0)
         converted = await served.client.call_tool("echo_basic", {"float64_value": 7})
         assert body(converted)["float64_value"] == 7.0
-        assert robot.count("request /basic/echo") == sent + 1  # none of the bad ones was sent
+        assert await robot.counted("request /basic/echo", sent + 1) == sent + 1  # none of the bad ones was sent
 
 
 async def test_rejected_aborted_and_cancelled_goals(ros: RosWorld) -> None:
@@ -132,7 +132,7 @@ async def test_fifty_concurrent_calls_are_all_answered(ros: RosWorld) -> None:
         results = await asyncio.gather(*(served.client.call_tool("set_projector_power", {"on": i % 2 == 0})
                                          for i in range(50)))
         assert [r.is_error for r in results] == [False] * 50
-        assert robot.count("request /projector/set_power") == 50
+        assert await robot.counted("request /projector/set_power", 50) == 50
 
 
 async def test_kill_9_removes_the_tools_and_a_restart_brings_them_back(ros: RosWorld) -> None:
