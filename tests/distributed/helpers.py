@@ -13,7 +13,6 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -86,21 +85,13 @@ class Child:
                 os.killpg(self.proc.pid, signal.SIGKILL)
                 self.proc.wait(5)
         self._reader.join(2)
+        if self.proc.stdout is not None and not self._reader.is_alive():
+            self.proc.stdout.close()  # no ResourceWarning (pytest -W error)
         return self.proc.returncode
 
 
 def robovoice(*args: str) -> list[str]:
     return [sys.executable, "-m", "robovoice.cli", *args]
-
-
-async def until(condition: Callable[[], bool], bound: float = BOUND_S, what: str = "condition") -> None:
-    """Wait on the event loop until `condition()` holds; fail after `bound` seconds."""
-    try:
-        async with asyncio.timeout(bound):
-            while not condition():
-                await asyncio.sleep(0.01)
-    except TimeoutError:
-        pytest.fail(f"{what} did not hold within {bound} s")
 
 
 def sim_argv(uri: str, *nodes: str, speed: float = 1.0) -> list[str]:

@@ -14,7 +14,8 @@ from robovoice.errors import MiddlewareError, NodeUnavailableError, RobotFailure
 from robovoice.middleware.base import Feedback, Message, NodeJoined, NodeLeft, PresenceEvent
 from robovoice.middleware.zenoh import ZenohMiddleware
 
-from .helpers import ROOT, Child, free_port, robovoice, until
+from ..waiting import until
+from .helpers import ROOT, Child, free_port, robovoice
 
 pytestmark = pytest.mark.integration
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import asyncio
 import socket
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator
 from dataclasses import dataclass
 
 import pytest
@@ -30,6 +30,8 @@ from robovoice.middleware.base import (
     RpcInfo,
 )
 from robovoice.middleware.memory import MemoryMiddleware
+
+from ..waiting import until
 
 MANIFEST = {"node": "echo", "tools": [{"name": "say", "rpc": "echo"}]}
 INFO = NodeInfo("echo", rpcs=(RpcInfo("echo", params=("text",)), RpcInfo("count", "action", ("n",))),
@@ -55,13 +57,6 @@ class Pair:
         host = await self.nodes.host(info, rpcs, actions)
         await until(lambda: info.name in self.client.nodes())
         return host
-
-
-async def until(condition: Callable[[], bool], bound: float = BOUND_S) -> None:
-    """Wait (polling the event loop) until `condition()` holds; fail after `bound` seconds."""
-    async with asyncio.timeout(bound):
-        while not condition():
-            await asyncio.sleep(0.005)
 
 
 @pytest.fixture(params=["memory", "zenoh"])

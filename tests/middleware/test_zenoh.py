@@ -9,7 +9,7 @@ import json
 import socket
 import threading
 import time
-from collections.abc import AsyncIterator, Callable
+from collections.abc import AsyncIterator
 from pathlib import Path
 
 import pytest
@@ -29,6 +29,8 @@ from robovoice.middleware.base import (
 from robovoice.middleware.zenoh import ZenohMiddleware
 from robovoice.middleware.zenoh_bridge import close_session
 
+from ..waiting import until
+
 BOUND_S = 5.0
 
 
@@ -36,12 +38,6 @@ def free_port() -> int:
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
         return int(sock.getsockname()[1])
-
-
-async def until(condition: Callable[[], bool], bound: float = BOUND_S) -> None:
-    async with asyncio.timeout(bound):
-        while not condition():
-            await asyncio.sleep(0.005)
 
 
 @pytest.fixture
