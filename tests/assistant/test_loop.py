@@ -5,10 +5,14 @@ from __future__ import annotations
 
 import itertools
 import json
+from collections.abc import AsyncIterator
 
-from robovoice.assistant.connect import RobotTarget, open_robot
+import pytest
+
+from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.events import BackendFailed, SentenceReady, ToolReturned, TurnEvent
 from robovoice.assistant.loop import Assistant
+from robovoice.config import RobotConfig
 from robovoice.llm.failover import FALLBACK_MESSAGE, Backoff, FailoverBackend
 from robovoice.llm.fake_server import (
     ErrorReply,
@@ -24,15 +28,28 @@ from robovoice.llm.openai_compat import OpenAICompatBackend
 
 # The robot is opened inside each test, not in a fixture: anyio's cancel scopes must be
 # entered and left in the same task, and pytest-asyncio runs fixture teardown in another.
-SIM = RobotTarget(robot="sim", sim_speed=50.0)
+SIM = RobotConfig(address="sim://?speed=50")
+
+
+_OPENED: list[OpenAICompatBackend] = []
 
 
 def _backend(server: FakeOpenAIServer) -> OpenAICompatBackend:
-    return OpenAICompatBackend(server.base_url, server.model)
+    backend = OpenAICompatBackend(server.base_url, server.model)
+    _OPENED.append(backend)
+    return backend
+
+
+@pytest.fixture(autouse=True)
+async def _close_backends() -> AsyncIterator[None]:
+    """Every backend a test opened is closed after it (its HTTP connections with it)."""
+    yield
+    while _OPENED:
+        await _OPENED.pop().aclose()
 
 
 async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
-    async with open_robot(SIM) as robot:
+    async with connect_robot(SIM) as robot:
         script: list[ScriptedReply] = [
             ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),), arg_chunk_chars=3),
             TextReply("I'm in the kitchen now. Dr. Weber's number is 3.5 metres away, just kidding! Anything else?"),
@@ -59,7 +76,7 @@ async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
 
 
 async def test_structured_tool_error_goes_back_and_the_model_recovers() -> None:
-    async with open_robot(SIM) as robot:
+    async with connect_robot(SIM) as robot:
         script: list[ScriptedReply] = [
             ToolCallReply((ScriptedCall("navigate_to", {"target": "garage"}),)),
             ToolCallReply((ScriptedCall("get_navigation_targets", {}),)),
@@ -80,7 +97,7 @@ async def test_structured_tool_error_goes_back_and_the_model_recovers() -> None:
 
 
 async def test_bad_arguments_become_a_tool_error_not_a_call() -> None:
-    async with open_robot(SIM) as robot:
+    async with connect_robot(SIM) as robot:
         script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("set_projector_power", '{"on": "yes please"}'),)),
                   ToolCallReply((ScriptedCall("set_projector_power", "{not json"),)),
                   TextReply("Sorry, I could not do that.")]
@@ -93,7 +110,7 @@ async def test_bad_arguments_become_a_tool_error_not_a_call() -> None:
 
 
 async def test_step_bound_ends_the_turn_with_words() -> None:
-    async with open_robot(SIM) as robot:
+    async with connect_robot(SIM) as robot:
         def reply(request: RecordedRequest) -> ToolCallReply | TextReply:
             if request.tool_names:  # keeps calling tools for as long as it is offered any
                 return ToolCallReply((ScriptedCall("get_battery_state", {}),))
@@ -109,13 +126,14 @@ async def test_step_bound_ends_the_turn_with_words() -> None:
 
 
 async def test_failover_to_a_second_server_then_fallback_when_all_are_dead() -> None:
-    async with open_robot(SIM) as robot:
+    async with connect_robot(SIM) as robot:
         events: list[TurnEvent] = []
         async with FakeOpenAIServer([ErrorReply(500, "GPU on fire")]) as edge, \
                 FakeOpenAIServer([TextReply("Hello from the cloud.")]) as cloud:
             chain = FailoverBackend([OpenAICompatBackend(edge.base_url, edge.model, name="edge"),
                                      OpenAICompatBackend(cloud.base_url, cloud.model, name="cloud")],
                                     backoff=Backoff(60, 2, 60))
+            _OPENED.extend(b for b in chain.backends if isinstance(b, OpenAICompatBackend))
             assistant = Assistant(chain, robot.tools, observer=events.append)
             first = await assistant.turn("hello")
             assert first.reply == "Hello from the cloud." and not first.fell_back
@@ -128,18 +146,19 @@ async def test_failover_to_a_second_server_then_fallback_when_all_are_dead() -> 
 
 
 async def test_stalled_backend_misses_its_first_token_deadline() -> None:
-    async with open_robot(SIM) as robot:
+    async with connect_robot(SIM) as robot:
         from robovoice.llm.base import Deadlines
 
         async with FakeOpenAIServer([TextReply("late", pacing=Pacing(first_token_delay_s=5))]) as server:
             backend = OpenAICompatBackend(server.base_url, server.model,
                                           deadlines=Deadlines(connect_s=1, first_token_s=0.3, idle_s=1, total_s=5))
+            _OPENED.append(backend)
             result = await Assistant(FailoverBackend([backend]), robot.tools).turn("hi")
         assert result.fell_back and result.metrics.as_dict()["finished"] < 3000
 
 
 async def test_history_is_bounded_and_starts_at_a_user_message() -> None:
-    async with open_robot(SIM) as robot:
+    async with connect_robot(SIM) as robot:
         async with FakeOpenAIServer([], default=TextReply("Okay.")) as server:
             assistant = Assistant(_backend(server), robot.tools, max_history_messages=4)
             for i in range(5):
@@ -152,7 +171,7 @@ async def test_history_is_bounded_and_starts_at_a_user_message() -> None:
 
 async def test_history_is_cut_in_halves_so_prompts_mostly_grow_by_appending() -> None:
     """Prefix caching on the model side pays off only while each prompt extends the last one."""
-    async with open_robot(SIM) as robot, FakeOpenAIServer([], default=TextReply("Okay.")) as server:
+    async with connect_robot(SIM) as robot, FakeOpenAIServer([], default=TextReply("Okay.")) as server:
         assistant = Assistant(_backend(server), robot.tools, max_history_messages=8)
         for i in range(12):
             await assistant.turn(f"message {i}")

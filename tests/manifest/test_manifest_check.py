@@ -42,8 +42,8 @@ def test_errors_are_listed_one_per_line(tmp_path: Path, nav: dict[str, Any]) -> 
     assert lines[: len(report.errors)] == [format_error(e) for e in report.errors]
     assert lines[0] == (
         f"{tmp_path / 'navigation' / 'mcp.json'}: $.tools[0].default: unknown field 'default' in a tool "
-        "(fix: did you mean 'defaults'? (known fields: 'annotations', 'defaults', 'description', 'name', "
-        "'parameters', 'ros2', 'rpc', 'timeout_s'); remove it or correct the spelling)"
+        "(fix: did you mean 'defaults'? (known fields: 'annotations', 'defaults', 'description', 'for_model', "
+        "'name', 'parameters', 'ros2', 'rpc', 'timeout_s', 'voice'); remove it or correct the spelling)"
     )
     assert lines[1].startswith(f"{tmp_path / 'projector.mcp.json'}: $: malformed JSON at line 1, column 2")
     assert lines[-1].endswith(": 2 errors")

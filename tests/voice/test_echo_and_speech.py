@@ -15,8 +15,8 @@ from robovoice.audio.fakes import ToneSynthesizer
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, as_float32
 from robovoice.audio.wav import MemorySink
 from robovoice.voice.echo import EchoCanceller, PlaybackReference
-from robovoice.voice.frontend import EchoMeter
 from robovoice.voice.inference import ModelExecutor
+from robovoice.voice.listener import EchoMeter
 from robovoice.voice.room import EchoPath
 from robovoice.voice.speech import SpeechOutput
 
@@ -154,7 +154,7 @@ async def test_synthesis_of_the_next_sentence_overlaps_playback() -> None:
     tts = SlowTts(delay=0.1)
     sink = PlayingSink(tts.log, seconds=0.3)
     executor = ModelExecutor("tts-test")
-    speech = SpeechOutput(tts, sink, executor)
+    speech = SpeechOutput(tts, sink, executor, queue_size=8)
     async with asyncio.TaskGroup() as group:
         task = group.create_task(speech.run())
         for text in ("One.", "Two.", "Three."):
@@ -173,7 +173,7 @@ async def test_interrupt_drops_everything_queued_at_once() -> None:
     tts = SlowTts(delay=0.05)
     sink = PlayingSink(tts.log, seconds=5.0)
     executor = ModelExecutor("tts-test")
-    speech = SpeechOutput(tts, sink, executor)
+    speech = SpeechOutput(tts, sink, executor, queue_size=8)
     async with asyncio.TaskGroup() as group:
         task = group.create_task(speech.run())
         for i in range(6):

@@ -10,11 +10,11 @@ from pathlib import Path
 import pytest
 
 from robovoice.assistant.events import BackendFailed, ToolCalled, ToolReturned
+from robovoice.config import VoiceConfig
 from robovoice.llm.base import Deadlines
 from robovoice.llm.failover import FALLBACK_MESSAGE
 from robovoice.llm.fake_server import FakeOpenAIServer, Pacing, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
-from robovoice.voice.config import SpeechConfig, VoiceConfig
 from robovoice.voice.events import (
     BargedIn,
     RobotStopped,
@@ -145,7 +145,7 @@ async def test_long_action_gives_throttled_progress_then_the_result(
 ) -> None:
     server.push(ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
                 TextReply("I am in the kitchen."))
-    config = VoiceConfig(speech=SpeechConfig(progress_interval_s=1.0))
+    config = VoiceConfig(progress_interval_s=1.0)
     async with voice_session(fakes, backend, speed=2.0, sim_speed=4.0, config=config) as s:
         transcriber.text = "Hey Jarvis, go to the kitchen."
         await s.say(wake_command())

@@ -13,11 +13,11 @@ import pytest
 
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, silence
 from robovoice.audio.wav import read_wav
+from robovoice.config import VoiceConfig
 from robovoice.llm.base import Deadlines
 from robovoice.llm.failover import FALLBACK_MESSAGE
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, Pacing, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
-from robovoice.voice.config import EchoConfig, VoiceConfig
 from robovoice.voice.events import (
     BargedIn,
     RobotStopped,
@@ -142,7 +142,7 @@ async def test_the_robots_own_voice_does_not_wake_it(voice_models: VoiceModels, 
     # it the microphone does hear "Hey Jarvis", and the playback's own detector rejects it.
     server.push(TextReply("To wake me up, say Hey Jarvis. Hey Jarvis, turn on the projector, for example. "
                           "Then I listen."))
-    config = VoiceConfig(echo=EchoConfig(enabled=echo_cancellation))
+    config = VoiceConfig(echo_cancellation=echo_cancellation)
     async with voice_session(voice_models, backend, config=config) as s:
         await s.say(clip("audio/wake_piper_battery_white10"))
         await s.log.wait_for(VoiceTurnFinished, timeout=60)

@@ -5,24 +5,31 @@ from __future__ import annotations
 
 import pytest
 
+from robovoice.config import VoiceConfig
 from robovoice.voice.config import SpeechConfig, TurnTakingConfig
 from robovoice.voice.progress import ProgressNarrator
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.turns import Action, Phase, TurnTaking
 from robovoice.voice.utterance import OwnWords, strip_wake_words
 
+from .voice_kit import sim_voice_roles
+
 # --- turn-taking ----------------------------------------------------------------------------------
 
 
+def _turns(**settings: float) -> TurnTakingConfig:
+    return TurnTakingConfig.from_config(VoiceConfig.model_validate(settings))
+
+
 def test_listening_ignores_speech_without_the_wake_word() -> None:
-    t = TurnTaking()
+    t = TurnTaking(_turns())
     assert t.phase(0.0) is Phase.LISTENING
     verdict = t.classify(1.0, 2.5, moving=False)
     assert verdict.action is Action.IGNORE and verdict.reason == "no_wake_word"
 
 
 def test_wake_word_inside_the_utterance_makes_it_a_command_once() -> None:
-    t = TurnTaking()
+    t = TurnTaking(_turns())
     t.wake(1.2)
     assert t.phase(1.3) is Phase.WOKEN
     assert t.addressed(0.8, 3.0)
@@ -32,7 +39,7 @@ def test_wake_word_inside_the_utterance_makes_it_a_command_once() -> None:
 
 
 def test_wake_word_then_pause_then_command_within_the_timeout() -> None:
-    t = TurnTaking(TurnTakingConfig(command_timeout_s=6.0))
+    t = TurnTaking(_turns(command_timeout_s=6.0))
     t.wake(1.0)
     t.rearm(1.3)  # the first utterance was the wake phrase alone
     assert t.classify(3.0, 4.5, moving=False).action is Action.COMMAND
@@ -43,13 +50,13 @@ def test_wake_word_then_pause_then_command_within_the_timeout() -> None:
 
 
 def test_short_speech_while_moving_is_checked_for_a_stop() -> None:
-    t = TurnTaking(TurnTakingConfig(stop_max_s=2.5))
+    t = TurnTaking(_turns(stop_max_s=2.5))
     assert t.classify(1.0, 1.6, moving=True).action is Action.STOP_CHECK
     assert t.classify(1.0, 5.0, moving=True).action is Action.IGNORE, "long talk is not a stop"
 
 
 def test_phases_through_a_turn_and_the_follow_up_window() -> None:
-    t = TurnTaking(TurnTakingConfig(follow_up_s=5.0, playback_tail_s=0.3))
+    t = TurnTaking(_turns(follow_up_s=5.0, playback_tail_s=0.3))
     t.wake(1.0)
     t.classify(0.5, 2.0, moving=False)
     t.turn_started()
@@ -60,7 +67,7 @@ def test_phases_through_a_turn_and_the_follow_up_window() -> None:
     t.playback(False, 6.0)
     assert t.phase(6.5) is Phase.FOLLOW_UP and not t.busy
     assert t.classify(6.1, 6.8, moving=False).action is Action.IGNORE, "inside the echo tail: not an answer"
-    t2 = TurnTaking(TurnTakingConfig(follow_up_s=5.0, playback_tail_s=0.3))
+    t2 = TurnTaking(_turns(follow_up_s=5.0, playback_tail_s=0.3))
     t2.turn_started()
     t2.playback(True, 3.0)
     t2.turn_finished(asked_question=True)
@@ -71,7 +78,7 @@ def test_phases_through_a_turn_and_the_follow_up_window() -> None:
 
 
 def test_no_follow_up_after_a_statement() -> None:
-    t = TurnTaking()
+    t = TurnTaking(_turns())
     t.turn_started()
     t.playback(True, 1.0)
     t.turn_finished(asked_question=False)
@@ -81,7 +88,7 @@ def test_no_follow_up_after_a_statement() -> None:
 
 
 def test_a_cancelled_turn_opens_no_follow_up() -> None:
-    t = TurnTaking()
+    t = TurnTaking(_turns())
     t.turn_started()
     t.playback(True, 1.0)
     t.turn_cancelled()
@@ -113,7 +120,7 @@ def test_not_stop_phrases(text: str) -> None:
 
 
 def test_long_actions_are_acknowledged_then_reported_at_most_every_interval() -> None:
-    n = ProgressNarrator(SpeechConfig(progress_interval_s=8.0))
+    n = ProgressNarrator(SpeechConfig.from_config(VoiceConfig(progress_interval_s=8.0)), sim_voice_roles())
     assert n.on_call("set_projector_power", {"on": True}, 0.0) is None
     assert n.on_call("navigate_to", {"target": "kitchen"}, 0.0) == "On my way to the kitchen."
     assert n.on_progress("navigate_to", 1.0, 8.0, "7 m to the kitchen", 2.0) is None, "throttled"

@@ -15,18 +15,21 @@ from typing import Any, TypeVar
 
 import numpy as np
 
-from robovoice.assistant.connect import RobotTarget, open_robot
-from robovoice.assistant.robot_tools import RobotTools
+from robovoice.assistant.connect import connect_robot
+from robovoice.assistant.robot_tools import RobotTools, Toolbox
 from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer, ToneWakeDetector
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, float32_to_int16
 from robovoice.audio.stt import Transcript
 from robovoice.audio.wav import read_wav
+from robovoice.config import RobotConfig, VoiceConfig
 from robovoice.llm.base import LLMBackend
+from robovoice.manifest.voice import VoiceDecl
 from robovoice.sim import SimRobot
-from robovoice.voice.config import VoiceConfig
+from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import PipelineEvent
 from robovoice.voice.models import VoiceModels
 from robovoice.voice.pipeline import VoicePipeline
+from robovoice.voice.roles import VoiceRoles
 from robovoice.voice.room import EchoPath, SimulatedRoom
 
 DATA = Path(__file__).resolve().parent.parent / "data"
@@ -48,6 +51,23 @@ def clip(name: str) -> AudioChunk:
 def clip_text(clip_id: str) -> str:
     specs = json.loads((EVAL_AUDIO / "clips.json").read_text(encoding="utf-8"))
     return str(next(s["text"] for s in specs if s["id"] == clip_id))
+
+
+def sim_voice_roles() -> VoiceRoles:
+    """The voice roles and phrases the sim robot's manifests declare."""
+    import robovoice.sim
+    from robovoice.manifest.loader import load_manifest_dir
+
+    loaded = load_manifest_dir(Path(robovoice.sim.__file__).parent / "manifests")
+    sections: dict[str, VoiceDecl] = {}
+    for item in loaded.manifests.values():
+        for tool in item.manifest.tools:
+            if tool.voice is not None:
+                sections[tool.name] = tool.voice
+        for snapshot in item.manifest.snapshots:
+            if snapshot.voice is not None:
+                sections[snapshot.name] = snapshot.voice
+    return VoiceRoles.from_tools(sections)
 
 
 # --- model fakes keyed to synthetic audio ------------------------------------------------------
@@ -167,19 +187,27 @@ async def voice_session(
     config: VoiceConfig | None = None,
     output_dir: Path | None = None,
     setup: str = "",
+    manifests: Path | None = None,
+    tools: Callable[[RobotTools], Toolbox] | None = None,
+    sim_moving: bool = True,
     **pipeline_options: Any,
 ) -> AsyncIterator[Session]:
-    """The embedded sim robot (over a real MCP client), a room and a running pipeline."""
-    async with open_robot(RobotTarget(sim_speed=sim_speed)) as link:
+    """The embedded sim robot (over a real MCP client; `manifests`: a folder replacing the sim's),
+    a room and a running pipeline. `config`: the ``[voice]`` settings; `tools`: wraps the robot's
+    tools (a test's stand-in); `sim_moving`: tell the pipeline whether the robot moves from the
+    sim's state (else it asks the robot's pose tool, as for a remote robot)."""
+    async with connect_robot(RobotConfig(address=f"sim://?speed={sim_speed:g}", manifests=manifests)) as link:
         sim = link.sim
         assert sim is not None
+        toolbox = tools(link.tools) if tools is not None else link.tools
         if setup:
             await sim.apply_setup(setup)
         room = SimulatedRoom(speed=speed, echo=echo, noise=noise)
         log = EventLog()
-        pipeline = VoicePipeline(models, backend, link.tools, source=room.mic, sink=room.speaker,
-                                 reference=room.reference, config=config, observer=log,
-                                 moving=lambda: sim.state.moving, output_dir=output_dir, **pipeline_options)
+        pipeline = VoicePipeline(models, backend, toolbox, source=room.mic, sink=room.speaker,
+                                 reference=room.reference, config=PipelineConfig.from_config(config), observer=log,
+                                 moving=(lambda: sim.state.moving) if sim_moving else None, output_dir=output_dir,
+                                 **pipeline_options)
         async with asyncio.TaskGroup() as group:
             group.create_task(pipeline.run(finish_timeout_s=15.0), name="pipeline")
             try:

@@ -3,9 +3,12 @@ pipeline, the evaluation) — handled with `match`."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import inspect
+from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, TypeVar
+
+E = TypeVar("E")
 
 
 @dataclass(frozen=True, slots=True)
@@ -72,3 +75,12 @@ TurnEvent = (
     TurnStarted | FirstTokenReceived | ToolCalled | ToolReturned | ToolProgressed | SentenceReady
     | BackendFailed | TurnFinished
 )
+
+
+async def notify(observer: Callable[[E], Awaitable[None] | None] | None, event: E) -> None:
+    """Hand `event` to `observer` (a plain function or a coroutine function), if there is one."""
+    if observer is None:
+        return
+    result = observer(event)
+    if inspect.isawaitable(result):
+        await result

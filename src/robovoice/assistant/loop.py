@@ -8,7 +8,6 @@ list the places). When no backend answers, the turn ends with the spoken fallbac
 
 from __future__ import annotations
 
-import inspect
 import json
 import logging
 import time
@@ -25,10 +24,11 @@ from robovoice.assistant.events import (
     TurnEvent,
     TurnFinished,
     TurnStarted,
+    notify,
 )
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.prompt import SYSTEM_PROMPT
-from robovoice.assistant.robot_tools import RobotTools, ToolOutcome
+from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
 from robovoice.llm.base import (
@@ -45,6 +45,7 @@ from robovoice.llm.failover import FALLBACK_MESSAGE
 log = logging.getLogger(__name__)
 
 Observer = Callable[[TurnEvent], Awaitable[None] | None]
+_Emit = Callable[[TurnEvent], Awaitable[None]]
 
 
 @dataclass(frozen=True, slots=True)
@@ -62,7 +63,7 @@ class Assistant:
     def __init__(
         self,
         backend: LLMBackend,
-        tools: RobotTools,
+        tools: Toolbox,
         *,
         system_prompt: str = SYSTEM_PROMPT,
         max_steps: int = 4,
@@ -89,19 +90,29 @@ class Assistant:
     def history(self) -> Sequence[ChatMessage]:
         return tuple(self._history)
 
-    async def _emit(self, event: TurnEvent) -> None:
-        if self._observer is not None:
-            result = self._observer(event)
-            if inspect.isawaitable(result):
-                await result
+    def _emitter(self, observer: Observer | None) -> _Emit:
+        """The turn's observer: the conversation's own (constructor), then the turn's."""
+        own = self._observer
+
+        async def emit(event: TurnEvent) -> None:
+            await notify(own, event)
+            await notify(observer, event)
+
+        return emit
 
     async def turn(
-        self, user: str | tuple[ContentPart, ...], *, metrics: TurnMetrics | None = None
+        self,
+        user: str | tuple[ContentPart, ...],
+        *,
+        metrics: TurnMetrics | None = None,
+        observer: Observer | None = None,
     ) -> TurnResult:
-        """Run one user turn to its spoken reply."""
+        """Run one user turn to its spoken reply. `observer` gets this turn's events (after
+        the conversation's observer): a voice turn routes its sentences to speech with it."""
         metrics = metrics or TurnMetrics()
+        emit = self._emitter(observer)
         user_message = ChatMessage("user", user)
-        await self._emit(TurnStarted(user_message.text))
+        await emit(TurnStarted(user_message.text))
         messages = [ChatMessage("system", self.system_prompt), *self._history, user_message]
         replies: list[str] = []
         calls: list[ToolCalled] = []
@@ -113,12 +124,12 @@ class Assistant:
             # On the last step the model gets no tools, so the turn ends with words, not a call.
             specs: list[ToolSpec] = await self.tools.specs() if step < self.max_steps - 1 else []
             try:
-                text, requested = await self._model_step(messages, specs, metrics)
+                text, requested = await self._model_step(messages, specs, metrics, emit)
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
                 fell_back = True
-                await self._emit(BackendFailed(str(exc), self.fallback_message))
-                await self._say(self.fallback_message, metrics)
+                await emit(BackendFailed(str(exc), self.fallback_message))
+                await self._say(self.fallback_message, metrics, emit)
                 replies.append(self.fallback_message)
                 break
             if text:
@@ -127,7 +138,7 @@ class Assistant:
             if not requested:
                 break
             for request in requested:
-                called, returned = await self._run_tool(request, metrics)
+                called, returned = await self._run_tool(request, metrics, emit)
                 calls.append(called)
                 outcomes.append(returned)
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
@@ -135,11 +146,11 @@ class Assistant:
         if not fell_back:
             self._remember(messages[1:])
         metrics.mark("finished")
-        await self._emit(TurnFinished(reply, tuple(calls), steps))
+        await emit(TurnFinished(reply, tuple(calls), steps))
         return TurnResult(reply, tuple(calls), tuple(outcomes), metrics, fell_back)
 
     async def _model_step(
-        self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics
+        self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit
     ) -> tuple[str, list[ToolCallRequested]]:
         splitter = SentenceSplitter()
         text: list[str] = []
@@ -154,12 +165,12 @@ class Assistant:
             if first:
                 first = False
                 metrics.mark("first_token")
-                await self._emit(FirstTokenReceived(self.backend.name))
+                await emit(FirstTokenReceived(self.backend.name))
             match event:
                 case TextDelta(delta):
                     text.append(delta)
                     for sentence in splitter.feed(delta):
-                        await self._say(sentence, metrics)
+                        await self._say(sentence, metrics, emit)
                 case ToolCallRequested():
                     requested.append(event)
                 case Finished():
@@ -168,35 +179,38 @@ class Assistant:
         metrics.model_ms += waited * 1000.0
         rest = splitter.flush()
         if rest:
-            await self._say(rest, metrics)
+            await self._say(rest, metrics, emit)
         for i, request in enumerate(requested):
             if not request.id:  # some servers omit ids; the history needs them to pair results
                 requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
                                                  request.raw_arguments, request.arguments_error)
         return "".join(text).strip(), requested
 
-    async def _say(self, sentence: str, metrics: TurnMetrics) -> None:
+    @staticmethod
+    async def _say(sentence: str, metrics: TurnMetrics, emit: _Emit) -> None:
         metrics.mark("first_sentence")
-        await self._emit(SentenceReady(sentence))
+        await emit(SentenceReady(sentence))
 
-    async def _run_tool(self, request: ToolCallRequested, metrics: TurnMetrics) -> tuple[ToolCalled, ToolReturned]:
+    async def _run_tool(
+        self, request: ToolCallRequested, metrics: TurnMetrics, emit: _Emit
+    ) -> tuple[ToolCalled, ToolReturned]:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
-        await self._emit(called)
+        await emit(called)
         if request.arguments_error is not None:
             body = {"error": "invalid_arguments", "message": request.arguments_error,
                     "hint": "call the tool again with a JSON object of arguments", "details": {}}
             outcome = ToolOutcome(json.dumps(body), True, 0.0, body)
         else:
             async def on_progress(progress: float, total: float | None, message: str | None) -> None:
-                await self._emit(ToolProgressed(request.name, progress, total, message or ""))
+                await emit(ToolProgressed(request.name, progress, total, message or ""))
 
             outcome = await self.tools.call(request.name, dict(request.arguments), on_progress)
         metrics.tools_ms += outcome.duration_ms
         metrics.mark(f"tool_result:{request.name}")
         returned = ToolReturned(request.id, request.name, outcome.text, outcome.is_error, outcome.duration_ms,
                                 outcome.error, outcome.structured)
-        await self._emit(returned)
+        await emit(returned)
         return called, returned
 
     def _remember(self, turn_messages: list[ChatMessage]) -> None:

@@ -2,7 +2,9 @@
 
 Wraps a connected official SDK `mcp.Client`: lists the tools and turns them into
 `ToolSpec`s, calls them (with progress), and refreshes the list when the server sends
-`notifications/tools/list_changed`.
+`notifications/tools/list_changed`. Each tool's manifest ``voice`` section (its role for the
+voice pipeline and its phrases, docs/manifest.md) comes in the tool's ``_meta``; `voice()`
+gives them by tool name.
 """
 
 from __future__ import annotations
@@ -10,18 +12,21 @@ from __future__ import annotations
 import json
 import logging
 import time
-from collections.abc import Awaitable, Callable
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import mcp_types as types
 from mcp import Client
+from mcp.shared.dispatcher import ProgressFnT
+from pydantic import ValidationError
 
 from robovoice.llm.base import ToolSpec
+from robovoice.manifest.voice import META_KEY, VoiceDecl
 
 log = logging.getLogger(__name__)
 
-ProgressCallback = Callable[[float, float | None, str | None], Awaitable[None]]
+ProgressCallback = ProgressFnT  # async (progress, total, message) -> None
 
 
 @dataclass(frozen=True, slots=True)
@@ -53,6 +58,34 @@ def _content_text(result: types.CallToolResult) -> str:
     return "\n".join(parts) if parts else json.dumps(result.structured_content or {})
 
 
+class Toolbox(Protocol):
+    """The robot's tools as the assistant and the voice pipeline use them: `RobotTools` over
+    MCP, or a test's stand-in. `specs` returns the same list object until the tools change."""
+
+    async def specs(self) -> list[ToolSpec]: ...
+
+    async def call(
+        self, name: str, arguments: dict[str, Any], on_progress: ProgressCallback | None = None
+    ) -> ToolOutcome: ...
+
+    def voice(self) -> Mapping[str, VoiceDecl]:
+        """The tools' voice sections by tool name, as of the last `specs()`."""
+        ...
+
+
+def voice_section(name: str, meta: Mapping[str, Any] | None) -> VoiceDecl | None:
+    """The voice section in a tool's ``_meta`` (None when absent or malformed, with a warning)."""
+    raw = (meta or {}).get(META_KEY)
+    if raw is None:
+        return None
+    try:
+        return VoiceDecl.model_validate(raw)
+    except ValidationError as exc:
+        log.warning("tool %s: its %s metadata is not understood (%s); the voice pipeline ignores it",
+                    name, META_KEY, exc.errors()[0]["msg"] if exc.errors() else exc)
+        return None
+
+
 class RobotTools:
     """The robot's MCP tools for one assistant. `handle_message` must be the client's
     `message_handler` so list changes are noticed."""
@@ -60,6 +93,7 @@ class RobotTools:
     def __init__(self, call_timeout_s: float = 330.0) -> None:
         self._client: Client | None = None
         self._specs: list[ToolSpec] = []
+        self._voice: dict[str, VoiceDecl] = {}
         self._stale = True
         self._call_timeout_s = call_timeout_s
 
@@ -87,9 +121,15 @@ class RobotTools:
             self._specs = [
                 ToolSpec(tool.name, tool.description or tool.name, tool.input_schema) for tool in listing.tools
             ]
+            sections = {tool.name: voice_section(tool.name, tool.meta) for tool in listing.tools}
+            self._voice = {name: section for name, section in sections.items() if section is not None}
             self._stale = False
             log.info("robot offers %d tools", len(self._specs))
         return self._specs
+
+    def voice(self) -> Mapping[str, VoiceDecl]:
+        """The tools' voice sections by name, as of the last `specs()`."""
+        return dict(self._voice)
 
     async def call(
         self, name: str, arguments: dict[str, Any], on_progress: ProgressCallback | None = None

@@ -18,18 +18,19 @@ import time
 from pathlib import Path
 from typing import Any, TextIO
 
-from robovoice.assistant.connect import RobotLink, open_robot
+from robovoice.assistant.connect import RobotConnection, connect_robot
 from robovoice.assistant.events import BackendFailed, ToolCalled, ToolReturned
 from robovoice.commands.common import (
     add_llm_args,
     add_robot_args,
     backend_from_args,
     config_from_args,
-    robot_target_from_args,
+    robot_config_from_args,
     warm_up,
 )
 from robovoice.commands.signals import CancelOnSignals
 from robovoice.commands.text import one_line as _short
+from robovoice.config import RobotConfig
 from robovoice.errors import ConfigError
 
 _STAGES = (("transcript", "transcript"), ("first_token", "first token"), ("tool_call", "tool call"),
@@ -119,8 +120,9 @@ class TranscriptPrinter:
                 self.line(f"  robot{'' if kind == 'reply' else f' ({kind})'}: \"{_short(text)}\"")
             case v.BargedIn():
                 self.line("  ! barge-in: the robot stops talking and listens")
-            case v.StopHeard(text=text):
-                self.line(f"  ! STOP (\"{_short(text)}\"): stop_robot, straight, no model")
+            case v.StopHeard(text=text, tool=tool):
+                how = f"{tool}, straight, no model" if tool else "the robot declares no stop tool"
+                self.line(f"  ! STOP (\"{_short(text)}\"): {how}")
             case v.RobotStopped(ok=ok, latency_ms=ms, detail=detail):
                 self.line(f"  ■ robot {'stopped' if ok else 'DID NOT STOP'} {ms:.0f} ms after the end of speech"
                           + ("" if ok else f": {detail}"))
@@ -142,7 +144,6 @@ def run_demo_command(args: argparse.Namespace) -> int:
 
 
 async def _demo(args: argparse.Namespace) -> int:
-    from robovoice.assistant.connect import RobotTarget
     from robovoice.assistant.metrics import summarise
     from robovoice.voice.demo import StepChecked, StepStarted, run_demo
     from robovoice.voice.models import load_voice_models
@@ -168,13 +169,13 @@ async def _demo(args: argparse.Namespace) -> int:
             printer.line(f"  {'✔ ok' if event.ok else '✘ FAILED: ' + str(event.problem)}")
 
     try:
-        async with open_robot(RobotTarget(robot="sim", sim_speed=args.sim_speed)) as link:
+        async with connect_robot(RobotConfig(address=f"sim://?speed={args.sim_speed:g}")) as link:
             if link.sim is None:
                 raise ConfigError("the demo needs the embedded sim robot")
             await warm_up(backend, await link.tools.specs())
             printer.line(f"ready: model {backend.name}, sim robot at {args.sim_speed:g}x; the conversation starts")
             report = await run_demo(models, backend, link.tools, link.sim, output_dir=args.output_dir,
-                                    observer=printer, on_step=on_step)
+                                    observer=printer, on_step=on_step, config=config.voice)
     finally:
         await backend.aclose()
 
@@ -221,13 +222,13 @@ async def _assist(args: argparse.Namespace) -> int:
         missing = [str(p) for p in args.input if not p.is_file()]
         if missing:
             raise ConfigError(f"no such WAV file: {', '.join(missing)}")
-    target = robot_target_from_args(args, config)
+    target = robot_config_from_args(args, config)
     printer.line("loading the voice models ...")
     models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=stt)
     try:
-        async with open_robot(target) as link:
+        async with connect_robot(target) as link:
             await warm_up(backend, await link.tools.specs())
-            printer.line(f"ready: robot {target.describe()}, model {backend.name}")
+            printer.line(f"ready: robot {target.address}, model {backend.name}")
             if args.input:
                 await _assist_files(args, models, backend, link, printer, config)
             else:
@@ -237,17 +238,17 @@ async def _assist(args: argparse.Namespace) -> int:
     return 0
 
 
-def _pipeline_options(link: RobotLink, config: Any) -> dict[str, Any]:
-    from robovoice.voice.config import from_settings
+def _pipeline_options(link: RobotConnection, config: Any) -> dict[str, Any]:
+    from robovoice.voice.config import PipelineConfig
 
-    options: dict[str, Any] = {"config": from_settings(config.voice)}
+    options: dict[str, Any] = {"config": PipelineConfig.from_config(config.voice)}
     if link.sim is not None:
         sim = link.sim
         options["moving"] = lambda: sim.state.moving
     return options
 
 
-async def _assist_files(args: argparse.Namespace, models: Any, backend: Any, link: RobotLink,
+async def _assist_files(args: argparse.Namespace, models: Any, backend: Any, link: RobotConnection,
                         printer: TranscriptPrinter, config: Any) -> None:
     from robovoice.audio.wav import read_wav
     from robovoice.voice.pipeline import VoicePipeline
@@ -275,7 +276,7 @@ async def _assist_files(args: argparse.Namespace, models: Any, backend: Any, lin
         printer.line(f"answers written to {args.output_dir}/")
 
 
-async def _assist_mic(args: argparse.Namespace, models: Any, backend: Any, link: RobotLink,
+async def _assist_mic(args: argparse.Namespace, models: Any, backend: Any, link: RobotConnection,
                       printer: TranscriptPrinter, config: Any) -> None:
     from robovoice.audio.devices import MicrophoneSource, SpeakerSink
     from robovoice.audio.format import MODEL_FORMAT, PIPER_FORMAT

@@ -69,18 +69,36 @@ def check_manifest_dir(root: str | Path, nodes: Mapping[str, NodeInfo] | None = 
     if not files:
         notes.append(f"no manifests found: expected <node>/mcp.json or <node>.mcp.json under {root}")
     tools = tuple(e.name for e in catalog.tools())
+    if files:
+        notes.extend(voice_role_notes(catalog))
     return CheckReport(str(root), tuple(files), tools, tuple(sort_errors(errors)), tuple(notes))
+
+
+NO_STOP_TOOL = (
+    "no tool declares the voice role \"stop\": a spoken \"stop\" cannot reach this robot without the "
+    "language model; add \"voice\": {\"role\": \"stop\"} to its stop tool (docs/manifest.md)"
+)
+
+
+def voice_role_notes(catalog: ToolCatalog) -> list[str]:
+    """What the voice pipeline will miss in these tools' voice roles (docs/manifest.md)."""
+    roles = [e.voice.role for e in catalog.tools() if e.voice is not None]
+    notes = [] if "stop" in roles else [NO_STOP_TOOL]
+    if roles.count("stop") > 1:
+        notes.append("more than one tool declares the voice role \"stop\": a spoken stop calls the first "
+                     "by name")
+    return notes
 
 
 def _unchecked_surface(node: str, manifest: Manifest, source: str) -> NodeSurface:
     """A surface built without a live node (RPC kinds unknown): for name checks only."""
     tools = tuple(
         ToolEntry(t.name, node, t.rpc, "rpc", t.description, dict(t.parameters), dict(t.defaults),
-                  t.annotations, t.timeout_s or 0.0, source, f"$.tools[{i}]")
+                  t.annotations, t.timeout_s or 0.0, source, f"$.tools[{i}]", t.voice)
         for i, t in enumerate(manifest.tools)
     )
     snaps = tuple(
-        SnapshotEntry(s.name, node, s.topic, s.description, s.max_age_s, source, f"$.snapshots[{i}]")
+        SnapshotEntry(s.name, node, s.topic, s.description, s.max_age_s, source, f"$.snapshots[{i}]", s.voice)
         for i, s in enumerate(manifest.snapshots)
     )
     return NodeSurface(node, source, tools, snaps)

@@ -10,13 +10,15 @@ from __future__ import annotations
 
 from typing import Any
 
-from pydantic import BaseModel, ConfigDict, Field
+from pydantic import BaseModel, ConfigDict, Field, field_validator
 
 from robovoice.manifest.ros2_model import Ros2SnapshotBinding, Ros2ToolBinding
+from robovoice.manifest.voice import VoiceDecl
 
 TOOL_NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_\-]{0,63}$"
 
 EMPTY_OBJECT_SCHEMA: dict[str, Any] = {"type": "object", "properties": {}, "additionalProperties": False}
+
 
 
 class _Strict(BaseModel):
@@ -62,6 +64,18 @@ class ToolDecl(_Strict):
     timeout_s: float | None = Field(
         default=None, gt=0, description="call timeout; default 10 s for RPCs, 300 s for actions"
     )
+    voice: VoiceDecl | None = Field(
+        default=None, description="its role for the voice pipeline (stop, motion) and what the robot says "
+        "when it starts, makes progress, succeeds or fails (docs/manifest.md)"
+    )
+
+    @field_validator("voice")
+    @classmethod
+    def _tool_role(cls, voice: VoiceDecl | None) -> VoiceDecl | None:
+        if voice is not None and voice.role == "pose":
+            raise ValueError("the pose role belongs to a snapshot (its value says whether the robot moves)")
+        return voice
+
     ros2: Ros2ToolBinding | None = Field(
         default=None, description="ros2:// only: the ROS 2 service or action (named by `rpc`) and its type; "
         "the parameters are derived from the type (docs/ros2.md)"
@@ -75,6 +89,17 @@ class SnapshotDecl(_Strict):
     topic: str = Field(min_length=1, description="the topic the node publishes")
     description: str = Field(min_length=1, description="what the snapshot tells, for the model")
     max_age_s: float = Field(gt=0, description="older than this, the snapshot is flagged stale")
+    voice: VoiceDecl | None = Field(
+        default=None, description="its role for the voice pipeline: pose (the value says whether the robot moves)"
+    )
+
+    @field_validator("voice")
+    @classmethod
+    def _snapshot_role(cls, voice: VoiceDecl | None) -> VoiceDecl | None:
+        if voice is not None and voice.role not in (None, "pose"):
+            raise ValueError(f"a snapshot's voice role can only be pose, not {voice.role}")
+        return voice
+
     ros2: Ros2SnapshotBinding | None = Field(
         default=None, description="ros2:// only: the ROS 2 message type of the topic (docs/ros2.md)"
     )

@@ -22,6 +22,7 @@ from robovoice.errors import ManifestError
 from robovoice.manifest.errors import ManifestErrors, did_you_mean, json_path, sort_errors
 from robovoice.manifest.loader import LoadedManifest, ManifestSet, validate_manifest
 from robovoice.manifest.model import EMPTY_OBJECT_SCHEMA, Manifest, SnapshotDecl, ToolAnnotations, ToolDecl
+from robovoice.manifest.voice import VoiceDecl
 from robovoice.middleware.base import JSON, NodeInfo, RpcInfo, RpcKind
 
 DEFAULT_TIMEOUT_S: Mapping[RpcKind, float] = {"rpc": 10.0, "action": 300.0}
@@ -50,6 +51,8 @@ class ToolEntry:
     source: str
     path: str = ""
     """JSON path of the declaration in `source` (``$.tools[1]``), for error messages."""
+    voice: VoiceDecl | None = None
+    """The declaration's voice section (role, phrases), carried to clients in ``_meta``."""
 
     @property
     def fixed(self) -> dict[str, JSON]:
@@ -78,6 +81,7 @@ class SnapshotEntry:
     max_age_s: float
     source: str
     path: str = ""
+    voice: VoiceDecl | None = None
 
     @property
     def input_schema(self) -> dict[str, Any]:
@@ -137,7 +141,7 @@ def resolve_node(info: NodeInfo, manifest: Manifest, source: str) -> NodeSurface
             errors.append(problem)
             continue
         snapshots.append(SnapshotEntry(
-            snap.name, info.name, snap.topic, snap.description, snap.max_age_s, source, json_path(loc)
+            snap.name, info.name, snap.topic, snap.description, snap.max_age_s, source, json_path(loc), snap.voice
         ))
     return NodeSurface(info.name, source, tuple(tools), tuple(snapshots), tuple(sort_errors(errors)))
 
@@ -194,6 +198,7 @@ def _tool_entry(node: str, rpc: RpcInfo, decl: ToolDecl, source: str, path: str)
         timeout_s=decl.timeout_s if decl.timeout_s is not None else DEFAULT_TIMEOUT_S[rpc.kind],
         source=source,
         path=path,
+        voice=decl.voice,
     )
 
 

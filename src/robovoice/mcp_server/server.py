@@ -37,6 +37,7 @@ from robovoice.manifest import (
     format_error,
     surface_for,
 )
+from robovoice.manifest.voice import META_KEY as VOICE_META_KEY
 from robovoice.mcp_server._groups import owned_tasks
 from robovoice.mcp_server.audit import AuditLog
 from robovoice.mcp_server.calls import ANONYMOUS, Caller, ProgressFn, ToolCalls
@@ -70,12 +71,16 @@ class _LowLevelServer(Server[Any]):
 
 
 def _tool(entry: CatalogEntry) -> types.Tool:
+    """The MCP tool of a catalog entry; its manifest ``voice`` section (role, phrases) travels
+    in ``_meta`` under ``robovoice/voice``, so a remote assistant gets it from ``tools/list``."""
     annotations = entry.annotations.model_dump(exclude_none=True)
+    meta: dict[str, Any] = {VOICE_META_KEY: entry.voice.meta()} if entry.voice is not None else {}
     return types.Tool(
         name=entry.name,
         description=entry.description,
         input_schema=entry.input_schema,
         annotations=types.ToolAnnotations.model_validate(annotations) if annotations else None,
+        _meta=meta or None,
     )
 
 

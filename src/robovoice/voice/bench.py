@@ -113,8 +113,10 @@ class _InstantBackend:
 class _NoTools(RobotTools):
     """A robot without tools (the overhead run needs no MCP)."""
 
+    _none: list[ToolSpec] = []  # noqa: RUF012 (one list: the pipeline sees an unchanged tool list)
+
     async def specs(self) -> list[ToolSpec]:
-        return []
+        return self._none
 
     async def call(self, name: str, arguments: dict[str, Any], on_progress: ProgressCallback | None = None
                    ) -> ToolOutcome:
@@ -179,8 +181,9 @@ async def bench_overhead(turns: int = 30, *, speed: float = 4.0) -> dict[str, An
 async def bench_local(turns: int = 8, *, models: VoiceModels | None = None, sim_speed: float = 10.0,
                       commands: Sequence[str] = LOCAL_COMMANDS) -> dict[str, Any]:
     """The all-local stack, from spoken commands to first audio out, per stage."""
-    from robovoice.assistant.connect import RobotTarget, open_robot
+    from robovoice.assistant.connect import connect_robot
     from robovoice.assistant.prompt import SYSTEM_PROMPT
+    from robovoice.config import RobotConfig
     from robovoice.llm.local import LocalLlamaBackend
     from robovoice.voice.models import load_voice_models
 
@@ -197,7 +200,7 @@ async def bench_local(turns: int = 8, *, models: VoiceModels | None = None, sim_
 
     local = LocalLlamaBackend()
     try:
-        async with open_robot(RobotTarget(sim_speed=sim_speed)) as link:
+        async with connect_robot(RobotConfig(address=f"sim://?speed={sim_speed:g}")) as link:
             await local.warm_up(SYSTEM_PROMPT, await link.tools.specs())
             sim = link.sim
             room = SimulatedRoom()

@@ -1,15 +1,23 @@
-"""Settings of the voice pipeline (frozen; built once at the edge and passed down)."""
+"""The voice pipeline's runtime settings (frozen), taken from the ``[voice]`` config.
+
+`robovoice.config.VoiceConfig` (pydantic, the ``[voice]`` section of robovoice.toml) is the one
+place defaults and limits live; the dataclasses here keep none of their own: each is built by
+its ``from_config``, so a value set in the file and a value left to its default reach the
+pipeline the same way.
+
+    config = PipelineConfig.from_config(VoiceConfig(follow_up_s=4.0))
+
+Which tools stop the robot, move it or tell its pose is not configuration: it comes from the
+robot's manifests (`robovoice.voice.roles`).
+"""
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass, field
-from pathlib import PurePath
+from dataclasses import dataclass
 
 from robovoice.audio.vad import EndpointerConfig
 from robovoice.audio.wake import WakeDeciderConfig
-from robovoice.config import VoiceConfig as VoiceSettings
-from robovoice.errors import ConfigError
+from robovoice.config import VoiceConfig
 
 
 @dataclass(frozen=True, slots=True)
@@ -25,17 +33,17 @@ class TurnTakingConfig:
     `playback_tail_s`: after playback ends its echo still counts as playback this long.
     """
 
-    command_timeout_s: float = 6.0
-    follow_up_s: float = 5.0
-    follow_up_always: bool = False
-    wake_slack_s: float = 0.6
-    stop_max_s: float = 4.0
-    playback_tail_s: float = 0.3
+    command_timeout_s: float
+    follow_up_s: float
+    follow_up_always: bool
+    wake_slack_s: float
+    stop_max_s: float
+    playback_tail_s: float
 
-    def __post_init__(self) -> None:
-        for name in ("command_timeout_s", "follow_up_s", "wake_slack_s", "stop_max_s", "playback_tail_s"):
-            if getattr(self, name) < 0:
-                raise ConfigError(f"voice {name} must be >= 0")
+    @classmethod
+    def from_config(cls, voice: VoiceConfig) -> TurnTakingConfig:
+        return cls(voice.command_timeout_s, voice.follow_up_s, voice.follow_up_always, voice.wake_slack_s,
+                   voice.stop_max_s, voice.playback_tail_s)
 
 
 @dataclass(frozen=True, slots=True)
@@ -46,58 +54,63 @@ class EchoConfig:
     own; speech heard during playback must be louder than what is left of the echo
     (`near_end_margin_db` above the measured leak)."""
 
-    enabled: bool = True
-    partitions: int = 8
-    step: float = 0.5
-    near_end_margin_db: float = 6.0
-    playback_wake_threshold: float = 0.7
-    playback_match_score: float = 0.2
+    enabled: bool
+    partitions: int
+    step: float
+    near_end_margin_db: float
+    playback_wake_threshold: float
+    playback_match_score: float
 
-    def __post_init__(self) -> None:
-        if self.partitions < 1 or not 0 < self.step <= 1.5:
-            raise ConfigError("echo partitions must be >= 1 and step in (0, 1.5]")
-        if not 0.0 < self.playback_wake_threshold <= 1.0:
-            raise ConfigError("playback_wake_threshold must be in (0, 1]")
+    @classmethod
+    def from_config(cls, voice: VoiceConfig) -> EchoConfig:
+        return cls(voice.echo_cancellation, voice.echo_partitions, voice.echo_step, voice.near_end_margin_db,
+                   voice.playback_wake_threshold, voice.playback_match_score)
 
 
 @dataclass(frozen=True, slots=True)
 class SpeechConfig:
     """Spoken output. `progress_interval_s`: at most one progress line per this many
-    (wall-clock) seconds of a long action; `long_tools`: tools acknowledged at once when
-    called (they take long); `stop_reply`: said after a spoken stop."""
+    (wall-clock) seconds of a long action; `stop_reply` / `stop_failed_reply`: said after a
+    spoken stop (unless the stop tool's manifest declares its own phrases); `queue_sentences`:
+    how many sentences may wait for speech."""
 
-    progress_interval_s: float = 8.0
-    long_tools: tuple[str, ...] = ("navigate_to", "return_to_dock")
-    stop_reply: str = "Stopped."
-    queue_sentences: int = 8
+    progress_interval_s: float
+    stop_reply: str
+    stop_failed_reply: str
+    queue_sentences: int
+
+    @classmethod
+    def from_config(cls, voice: VoiceConfig) -> SpeechConfig:
+        return cls(voice.progress_interval_s, voice.stop_reply, voice.stop_failed_reply, voice.speech_queue)
 
 
 @dataclass(frozen=True, slots=True)
-class VoiceConfig:
-    wake_model: str = "hey_jarvis"
-    wake_phrase: str = "hey jarvis"
-    wake: WakeDeciderConfig = field(default_factory=WakeDeciderConfig)
-    endpointer: EndpointerConfig = field(default_factory=EndpointerConfig)
-    turns: TurnTakingConfig = field(default_factory=TurnTakingConfig)
-    echo: EchoConfig = field(default_factory=EchoConfig)
-    speech: SpeechConfig = field(default_factory=SpeechConfig)
-    vocabulary: tuple[str, ...] = ()  # extra speech-to-text hints (`robovoice.voice.vocabulary`)
-    stop_tool: str = "stop_robot"
-    motion_tools: tuple[str, ...] = ("navigate_to", "return_to_dock")
-    stop_timeout_s: float = 5.0
+class PipelineConfig:
+    """Everything `VoicePipeline` is tuned by. `wake_phrase`: what the wake word says (for
+    stripping it from transcripts and for speech-to-text hints); `vocabulary`: extra words for
+    speech-to-text; `stop_timeout_s`: how long a spoken stop waits for the stop tool."""
 
+    wake_phrase: str
+    wake: WakeDeciderConfig
+    endpointer: EndpointerConfig
+    turns: TurnTakingConfig
+    echo: EchoConfig
+    speech: SpeechConfig
+    vocabulary: tuple[str, ...]
+    stop_timeout_s: float
 
-def from_settings(settings: VoiceSettings) -> VoiceConfig:
-    """The pipeline's config from the ``[voice]`` section of robovoice.toml."""
-    phrase = settings.wake_phrase
-    if phrase is None:  # the model's name as words: "hey_jarvis", ".../okay_robot_v0.2.onnx"
-        phrase = re.sub(r"_v[\d.]+$", "", PurePath(settings.wake_model).stem).replace("_", " ")
-    return VoiceConfig(
-        wake_model=settings.wake_model,
-        wake_phrase=phrase,
-        wake=WakeDeciderConfig(threshold=settings.wake_threshold),
-        endpointer=EndpointerConfig(end_silence_s=settings.end_of_turn_silence_ms / 1000.0,
-                                    max_utterance_s=settings.max_utterance_s),
-        turns=TurnTakingConfig(follow_up_s=settings.follow_up_s),
-        vocabulary=tuple(settings.vocabulary),
-    )
+    @classmethod
+    def from_config(cls, voice: VoiceConfig | None = None) -> PipelineConfig:
+        """From the ``[voice]`` section (None: its defaults)."""
+        voice = voice if voice is not None else VoiceConfig()
+        return cls(
+            wake_phrase=voice.spoken_wake_phrase,
+            wake=WakeDeciderConfig(threshold=voice.wake_threshold),
+            endpointer=EndpointerConfig(end_silence_s=voice.end_of_turn_silence_ms / 1000.0,
+                                        max_utterance_s=voice.max_utterance_s),
+            turns=TurnTakingConfig.from_config(voice),
+            echo=EchoConfig.from_config(voice),
+            speech=SpeechConfig.from_config(voice),
+            vocabulary=tuple(voice.vocabulary),
+            stop_timeout_s=voice.stop_timeout_s,
+        )

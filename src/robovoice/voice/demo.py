@@ -12,7 +12,7 @@ Library code: no printing; `robovoice.commands.voice` prints the live transcript
 from __future__ import annotations
 
 import asyncio
-import inspect
+import dataclasses
 import logging
 import time
 from collections.abc import Callable, Sequence
@@ -20,18 +20,20 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from robovoice.assistant.events import ToolCalled, ToolReturned
+from robovoice.assistant.events import ToolCalled, ToolReturned, notify
 from robovoice.assistant.loop import TurnResult
 from robovoice.assistant.robot_tools import RobotTools
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, silence
 from robovoice.audio.tts import Synthesizer
 from robovoice.audio.wav import write_wav
+from robovoice.config import VoiceConfig
 from robovoice.llm.base import LLMBackend
 from robovoice.sim import SimRobot, SimState
-from robovoice.voice.config import SpeechConfig, VoiceConfig
+from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import (
     PipelineEvent,
     RobotStopped,
+    SentenceSpoken,
     VoiceObserver,
     VoiceTurnFinished,
     VoiceTurnStarted,
@@ -159,7 +161,10 @@ def _stays_at(place: str) -> Check:
         if state.moving or state.nearest_place != place:
             return "the robot drove off to some other place"
         arrived = [r for r in step.returned() if r.name == "navigate_to" and not r.is_error]
-        return "a drive to an unknown place succeeded" if arrived else None
+        if arrived:
+            return "a drive to an unknown place succeeded"
+        said = [e.text for e in step.events if isinstance(e, SentenceSpoken) and e.text.startswith("On my way")]
+        return f"it said {said[0]!r} for a drive that failed at once" if said else None
 
     return check
 
@@ -204,10 +209,7 @@ class _Recorder:
         self.step.events.append(event)
         self.all.append(event)
         self.changed.set()
-        if self.forward is not None:
-            result = self.forward(event)
-            if inspect.isawaitable(result):
-                await result
+        await notify(self.forward, event)
 
     async def wait(self, predicate: Callable[[], bool], timeout: float) -> bool:
         try:
@@ -236,8 +238,12 @@ async def run_demo(
     on_step: Callable[[StepStarted | StepChecked], Any] | None = None,
     steps: Sequence[Step] | None = None,
     step_timeout_s: float = 120.0,
+    config: VoiceConfig | None = None,
+    progress_interval_s: float = 2.0,
 ) -> DemoReport:
-    """Run the script (default `demo_script`); answers go to `output_dir` as WAV files."""
+    """Run the script (default `demo_script`); answers go to `output_dir` as WAV files.
+    `config`: the ``[voice]`` settings (wake phrase, vocabulary, ...); the demo's drives are
+    short, so progress is said every `progress_interval_s`."""
     started = time.perf_counter()
     script = list(steps) if steps is not None else demo_script()
     voice = user_voice or models.tts
@@ -245,9 +251,11 @@ async def run_demo(
              for step in script for text in (step.say, step.remote, step.stop) if text}
     room = SimulatedRoom(record=True)
     recorder = _Recorder(observer)
-    config = VoiceConfig(speech=SpeechConfig(progress_interval_s=2.0))
+    settings = PipelineConfig.from_config(config)
+    pipeline_config = dataclasses.replace(
+        settings, speech=dataclasses.replace(settings.speech, progress_interval_s=progress_interval_s))
     pipeline = VoicePipeline(models, backend, tools, source=room.mic, sink=room.speaker, reference=room.reference,
-                             config=config, observer=recorder, moving=lambda: sim.state.moving,
+                             config=pipeline_config, observer=recorder, moving=lambda: sim.state.moving,
                              output_dir=output_dir)
     checked: list[StepChecked] = []
 

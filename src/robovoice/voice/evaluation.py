@@ -24,7 +24,7 @@ from robovoice.config import Config
 from robovoice.eval.cases import Case
 from robovoice.eval.runner import ClipOutcome
 from robovoice.llm.base import LLMBackend
-from robovoice.voice.config import VoiceConfig, from_settings
+from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import PipelineEvent, TranscriptReady, UtteranceIgnored, WakeWordHeard
 from robovoice.voice.models import VoiceModels, load_voice_models
 from robovoice.voice.pipeline import VoicePipeline
@@ -39,7 +39,7 @@ class VoiceClipRunner:
     `speed`: how much faster than real time the room plays the clip."""
 
     models: VoiceModels
-    config: VoiceConfig
+    config: PipelineConfig
     speed: float = 1.0
     turn_timeout_s: float = 180.0
 
@@ -83,4 +83,4 @@ async def open_clip_runner(
     settings = (config or Config()).voice
     if models is None:
         models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model, stt=settings.stt)
-    yield VoiceClipRunner(models, from_settings(settings), speed)
+    yield VoiceClipRunner(models, PipelineConfig.from_config(settings), speed)

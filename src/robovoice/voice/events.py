@@ -97,11 +97,13 @@ class BargedIn:
 
 @dataclass(frozen=True, slots=True)
 class StopHeard:
-    """Control: a spoken stop; the robot's stop tool is called directly, no model."""
+    """Control: a spoken stop; the robot's stop tool (`tool`, the manifest's ``stop`` role;
+    None when the robot declares none) is called directly, no model."""
 
     text: str
     at: float
     cancelled_turn: int | None
+    tool: str | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -120,3 +122,4 @@ VoiceEvent = (
 )
 PipelineEvent = VoiceEvent | TurnEvent
 VoiceObserver = Callable[[PipelineEvent], Awaitable[None] | None]
+Emit = Callable[[PipelineEvent], Awaitable[None]]  # the pipeline's own: the observer, awaited

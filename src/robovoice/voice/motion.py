@@ -1,10 +1,13 @@
 """Is the robot moving? Needed to accept a spoken "stop" without the wake word.
 
-The pipeline knows about drives it started itself (motion tools called in a running turn);
-`PoseMotionProbe` also asks the robot, through its pose snapshot tool (``get_robot_pose``,
-whose value carries ``"moving"``), so a drive started by anyone else counts too. Answers
-are cached briefly and every query is bounded: an unanswered probe means "not known to be
-moving".
+`MotionWatch.moving` answers at once, never waiting on the network (it is asked inside the
+microphone loop): true while a motion tool (the ``motion`` role) called in a running turn is
+under way, or when the robot's own last answer says so. That answer comes from a local
+callable (the embedded sim's state), or from `PoseMotionProbe`, which asks the robot's pose
+snapshot tool (the ``pose`` role: its value carries ``"moving"``) -- in `MotionWatch.run`, a
+task of the pipeline's TaskGroup, refreshed whenever speech starts or pauses (`want`), so a
+fresh answer is there by the time the utterance ends. Every query is bounded; a probe that
+does not answer means "not known to be moving".
 """
 
 from __future__ import annotations
@@ -13,13 +16,12 @@ import asyncio
 import json
 import logging
 import time
-from typing import Any, Protocol
+from collections.abc import Callable
+from typing import Any
+
+from robovoice.assistant.robot_tools import Toolbox
 
 log = logging.getLogger(__name__)
-
-
-class ToolCaller(Protocol):
-    async def call(self, name: str, arguments: dict[str, Any], on_progress: Any = None) -> Any: ...
 
 
 def _moving_flag(body: Any) -> bool | None:
@@ -31,51 +33,115 @@ def _moving_flag(body: Any) -> bool | None:
 
 
 class PoseMotionProbe:
-    """Asks the robot's pose tool whether it moves (cached for `cache_s`)."""
+    """Asks the robot's pose tool `tool` whether it moves (one bounded MCP call per query).
+    After an error or an answer without a ``moving`` flag it stops asking (`available`)."""
 
-    def __init__(self, tools: ToolCaller, *, tool: str = "get_robot_pose", cache_s: float = 0.3,
-                 timeout_s: float = 1.0) -> None:
+    def __init__(self, tools: Toolbox, tool: str, *, timeout_s: float = 1.0) -> None:
         self._tools = tools
         self.tool = tool
-        self._cache_s = cache_s
         self._timeout_s = timeout_s
-        self._last: tuple[float, bool] | None = None
         self.available = True
 
-    @property
-    def cached(self) -> bool:
-        """The last answer if recent, else False (for decisions that cannot wait)."""
-        if self._last is None or time.monotonic() - self._last[0] > 2.0:
-            return False
-        return self._last[1]
-
-    async def __call__(self) -> bool:
+    async def __call__(self) -> bool | None:
+        """True/False, or None when not known (no answer in time, or no usable answer)."""
         if not self.available:
-            return False
-        now = time.monotonic()
-        if self._last is not None and now - self._last[0] <= self._cache_s:
-            return self._last[1]
+            return None
         try:
             async with asyncio.timeout(self._timeout_s):
                 outcome = await self._tools.call(self.tool, {})
         except TimeoutError:
             log.warning("motion probe %s did not answer within %.1f s", self.tool, self._timeout_s)
-            return False
-        if getattr(outcome, "is_error", False):
-            log.info("motion probe %s failed (%s); relying on the pipeline's own drives", self.tool,
-                     getattr(outcome, "text", ""))
+            return None
+        if outcome.is_error:
+            log.info("motion probe %s failed (%s); relying on the pipeline's own drives", self.tool, outcome.text)
             self.available = False
-            return False
-        body = getattr(outcome, "structured", None)
+            return None
+        body = outcome.structured
         if body is None:
             try:
-                body = json.loads(getattr(outcome, "text", ""))
+                body = json.loads(outcome.text)
             except json.JSONDecodeError:
                 body = None
         moving = _moving_flag(body)
         if moving is None:
             log.info("motion probe %s gives no 'moving' flag; relying on the pipeline's own drives", self.tool)
             self.available = False
-            return False
-        self._last = (time.monotonic(), moving)
         return moving
+
+
+class MotionWatch:
+    """The pipeline's view of whether the robot moves (see the module docstring).
+
+    `local`: a callable answering at once (the embedded sim's ``state.moving``); without it
+    the pose tool is asked in the background (`set_pose_tool`, from the robot's roles).
+    `max_age_s`: an answer older than this no longer counts."""
+
+    def __init__(
+        self,
+        tools: Toolbox,
+        local: Callable[[], bool] | None = None,
+        *,
+        probe_timeout_s: float = 1.0,
+        max_age_s: float = 5.0,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self._tools = tools
+        self._local = local
+        self._probe_timeout_s = probe_timeout_s
+        self._max_age_s = max_age_s
+        self._clock = clock
+        self.probe: PoseMotionProbe | None = None
+        self._last: tuple[float, bool] | None = None
+        self._own: set[str] = set()  # call ids of motion tools under way in turns
+        self._wanted = asyncio.Event()
+        self.probes = 0  # pose queries made (for tests and stats)
+
+    def set_pose_tool(self, tool: str | None) -> None:
+        """The robot's pose tool (None: it declares none); a new one starts fresh."""
+        if self._local is not None or (self.probe is not None and self.probe.tool == tool):
+            return
+        self.probe = PoseMotionProbe(self._tools, tool, timeout_s=self._probe_timeout_s) if tool else None
+        self._last = None
+
+    def started(self, call_id: str) -> None:
+        """A motion tool was called in a turn."""
+        self._own.add(call_id)
+
+    def finished(self, call_id: str) -> None:
+        self._own.discard(call_id)
+
+    def forget(self, call_ids: set[str]) -> None:
+        self._own.difference_update(call_ids)
+
+    @property
+    def own_motion(self) -> bool:
+        return bool(self._own)
+
+    @property
+    def moving(self) -> bool:
+        """Now, without waiting: a drive of ours, the local answer, or the pose tool's last
+        answer if recent enough."""
+        if self._own:
+            return True
+        if self._local is not None:
+            return bool(self._local())
+        last = self._last
+        return last is not None and self._clock() - last[0] <= self._max_age_s and last[1]
+
+    def want(self) -> None:
+        """Ask for a fresh answer from the pose tool (returns at once)."""
+        if self.probe is not None and self.probe.available:
+            self._wanted.set()
+
+    async def run(self) -> None:
+        """Refresh the pose tool's answer whenever one is wanted; until cancelled."""
+        while True:
+            await self._wanted.wait()
+            self._wanted.clear()
+            probe = self.probe
+            if probe is None:
+                continue
+            self.probes += 1
+            moving = await probe()
+            if moving is not None and probe is self.probe:
+                self._last = (self._clock(), moving)

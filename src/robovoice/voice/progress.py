@@ -1,11 +1,15 @@
-"""Short spoken feedback while a long robot action runs. Pure logic, clock passed in.
+"""Short spoken feedback while robot actions run. Pure logic, clock passed in.
 
-- When a long tool is called (`SpeechConfig.long_tools`, e.g. a drive) the robot
-  acknowledges at once ("On my way to the kitchen."), so the person hears something
-  within a second, long before the drive ends and the model words the result.
-- Progress reports of the action become at most one short line per
-  `progress_interval_s` ("Still on my way, 4 metres to the kitchen."); the final report
-  ("arrived ...") is not spoken: the model's reply says the result.
+What is said comes from the tool's manifest (`voice.say`, docs/manifest.md), filled from the
+call's arguments, its progress reports and its result (`robovoice.manifest.voice.fill`: a
+phrase with a missing field is not said):
+
+- `start`: said when the tool is called, so the person hears something within a second of a
+  long action, long before it ends and the model words the result ("On my way to the kitchen.");
+- `progress`: at most one line per `progress_interval_s` ("Still on my way, 4 metres to the
+  kitchen."); a tool without a progress phrase has its report's message said as it is. The
+  final report ("arrived ...") is not said: the model's reply says the result;
+- `success` / `failure`: said when the tool returns (most tools leave this to the model).
 """
 
 from __future__ import annotations
@@ -14,7 +18,9 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
+from robovoice.manifest.voice import fill
 from robovoice.voice.config import SpeechConfig
+from robovoice.voice.roles import VoiceRoles
 
 _METRES = re.compile(r"\b(\d+(?:\.\d+)?) m\b")
 
@@ -27,29 +33,39 @@ def _speakable(message: str) -> str:
     return _METRES.sub(metres, message.strip().rstrip("."))
 
 
-class ProgressNarrator:
-    """Decides which action feedback is worth saying, and how."""
+def _fields(*parts: Mapping[str, Any] | None) -> dict[str, Any]:
+    """Template fields: the parts merged, empty strings left out (a missing field)."""
+    merged: dict[str, Any] = {}
+    for part in parts:
+        for key, value in (part or {}).items():
+            if value is not None and value != "":
+                merged[key] = value
+    return merged
 
-    def __init__(self, config: SpeechConfig | None = None) -> None:
-        self.config = config or SpeechConfig()
+
+class ProgressNarrator:
+    """Decides which action feedback is worth saying, and how. `roles` (the robot's voice
+    roles and phrases) is replaced when the tool list changes."""
+
+    def __init__(self, config: SpeechConfig, roles: VoiceRoles | None = None) -> None:
+        self.config = config
+        self.roles = roles or VoiceRoles()
         self._last_spoken: dict[str, float] = {}
 
     def reset(self) -> None:
         self._last_spoken.clear()
 
     def on_call(self, name: str, arguments: Mapping[str, Any], now: float) -> str | None:
-        """The acknowledgement for a long tool (None for quick tools)."""
-        if name not in self.config.long_tools:
-            return None
-        self._last_spoken[name] = now
-        target = arguments.get("target")
-        if name == "return_to_dock" or (isinstance(target, str) and target.strip().lower() == "charging dock"):
-            return "Going back to my charging dock."
-        if name == "navigate_to" and isinstance(target, str) and target.strip():
-            return f"On my way to the {target.strip()}."
-        return "One moment, please."
+        """The acknowledgement of a call (None when the tool declares none)."""
+        line = fill(self.roles.say(name).start, _fields(arguments))
+        if line is not None:
+            self._last_spoken[name] = now
+        return line
 
-    def on_progress(self, name: str, progress: float, total: float | None, message: str, now: float) -> str | None:
+    def on_progress(
+        self, name: str, progress: float, total: float | None, message: str, now: float,
+        arguments: Mapping[str, Any] | None = None,
+    ) -> str | None:
         """A progress line, or None when throttled, final, or saying nothing."""
         if total is not None and total > 0 and progress >= total:
             return None
@@ -58,11 +74,24 @@ class ProgressNarrator:
         last = self._last_spoken.get(name)
         if last is not None and now - last < self.config.progress_interval_s:
             return None
-        self._last_spoken[name] = now
-        if message:
-            return f"Still on my way, {_speakable(message)}." if name in ("navigate_to", "return_to_dock") else (
-                f"{_speakable(message)[:1].upper()}{_speakable(message)[1:]}."
-            )
-        if total:
-            return f"{round(100 * progress / total)} percent done."
-        return None
+        percent = 100.0 * progress / total if total else None
+        template = self.roles.say(name).progress
+        if template is not None:
+            line = fill(template, _fields(arguments, {"message": _speakable(message), "progress": progress,
+                                                      "total": total, "percent": percent}))
+        elif message:
+            spoken = _speakable(message)
+            line = f"{spoken[:1].upper()}{spoken[1:]}."
+        else:
+            line = f"{round(percent)} percent done." if percent is not None else None
+        if line is not None:
+            self._last_spoken[name] = now
+        return line
+
+    def on_result(
+        self, name: str, arguments: Mapping[str, Any], failed: bool, result: Mapping[str, Any] | None
+    ) -> str | None:
+        """The tool's success or failure phrase, if it declares one."""
+        phrases = self.roles.say(name)
+        body = {k: v for k, v in (result or {}).items() if isinstance(v, (str, int, float, bool))}
+        return fill(phrases.failure if failed else phrases.success, _fields(arguments, body))

@@ -6,19 +6,21 @@ Two stages joined by a small queue, each a task of `SpeechOutput.run()`:
 
 `interrupt()` is the barge-in control: it drops everything queued in both stages, stops the
 sink (its queued audio is dropped at once) and discards a synthesis already running. It
-returns immediately. Each piece of speech carries the turn it belongs to and that turn's
+returns immediately. `withdraw(handle)` takes back one sentence that has not started playing
+(an acknowledgement whose tool failed at once). Each piece of speech carries the turn it belongs to and that turn's
 `TurnMetrics`, which get ``first_audio`` when the turn's first audio goes to the speaker.
 """
 
 from __future__ import annotations
 
 import asyncio
-import inspect
+import itertools
 import logging
 import time
 from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 
+from robovoice.assistant.events import notify
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.audio.format import AudioChunk, AudioFormat, concat, convert
 from robovoice.audio.streams import AudioSink
@@ -38,12 +40,13 @@ class _Say:
     kind: str
     metrics: TurnMetrics | None
     epoch: int
+    handle: int
 
 
 @dataclass(frozen=True, slots=True)
 class _Audio:
     say: _Say
-    chunk: AudioChunk
+    chunk: AudioChunk | None  # None: nothing to play (withdrawn, or silent)
 
 
 class SpeechOutput:
@@ -58,7 +61,7 @@ class SpeechOutput:
         *,
         sink_format: AudioFormat | None = None,
         on_spoken: SpokenObserver | None = None,
-        queue_size: int = 8,
+        queue_size: int,
     ) -> None:
         self.tts = tts
         self.sink = sink
@@ -72,6 +75,9 @@ class SpeechOutput:
         self._unplayed = False  # handed to the sink, drain not yet confirmed
         self._idle = asyncio.Event()
         self._idle.set()
+        self._handles = itertools.count(1)
+        self._unstarted: set[int] = set()  # handles said whose playback has not started
+        self._withdrawn: set[int] = set()
         self.recordings: dict[int | None, list[AudioChunk]] = {}
         self.interrupts = 0
 
@@ -84,13 +90,26 @@ class SpeechOutput:
 
     def say(
         self, text: str, *, turn: int | None = None, kind: str = "reply", metrics: TurnMetrics | None = None
-    ) -> None:
+    ) -> int | None:
+        """Queue `text`; its handle (for `withdraw`), None when there is nothing to say."""
         text = text.strip()
         if not text:
-            return
+            return None
+        handle = next(self._handles)
         self._pending += 1
+        self._unstarted.add(handle)
         self._idle.clear()
-        self._texts.put_nowait(_Say(text, turn, kind, metrics, self._epoch))
+        self._texts.put_nowait(_Say(text, turn, kind, metrics, self._epoch, handle))
+        return handle
+
+    def withdraw(self, handle: int | None) -> bool:
+        """Take back what `say` queued under `handle` unless it started playing; whether it did."""
+        if handle is None or handle not in self._unstarted:
+            return False
+        self._unstarted.discard(handle)
+        self._withdrawn.add(handle)
+        log.info("speech %d withdrawn before it was played", handle)
+        return True
 
     def interrupt(self) -> None:
         """Barge-in: drop all queued and playing speech now."""
@@ -102,6 +121,8 @@ class SpeechOutput:
                 queue.get_nowait()
                 dropped += 1
         self._pending = 0
+        self._unstarted.clear()
+        self._withdrawn.clear()
         self.sink.stop()
         self._unplayed = False
         self._idle.set()
@@ -137,6 +158,9 @@ class SpeechOutput:
             item = await self._texts.get()
             if item.epoch != self._epoch:
                 continue
+            if item.handle in self._withdrawn:
+                await self._audio.put(_Audio(item, None))
+                continue
             started = time.perf_counter()
             chunk = await self._executor.run(self.tts.synthesize, item.text)
             if item.metrics is not None:
@@ -145,10 +169,7 @@ class SpeechOutput:
                 continue
             if self._sink_format is not None and chunk.format != self._sink_format:
                 chunk = convert(chunk, self._sink_format)
-            if chunk.num_frames == 0:
-                self._done_one(item)
-                continue
-            await self._audio.put(_Audio(item, chunk))
+            await self._audio.put(_Audio(item, chunk if chunk.num_frames else None))
 
     async def _play(self) -> None:
         while True:
@@ -156,35 +177,28 @@ class SpeechOutput:
             item = audio.say
             if item.epoch != self._epoch:
                 continue
-            if item.metrics is not None:
-                item.metrics.mark("first_audio")
-            self._unplayed = True
-            await self.sink.write(audio.chunk)
-            self.recordings.setdefault(item.turn, []).append(audio.chunk)
-            await self._notify(SentenceSpoken(item.turn, item.text, item.kind, audio.chunk.duration_s))
-            if item.epoch != self._epoch:
-                continue
+            self._unstarted.discard(item.handle)
+            if audio.chunk is not None and item.handle not in self._withdrawn:
+                if item.metrics is not None:
+                    item.metrics.mark("first_audio")
+                self._unplayed = True
+                await self.sink.write(audio.chunk)
+                self.recordings.setdefault(item.turn, []).append(audio.chunk)
+                await notify(self._on_spoken,
+                             SentenceSpoken(item.turn, item.text, item.kind, audio.chunk.duration_s))
+                if item.epoch != self._epoch:
+                    continue
+            self._withdrawn.discard(item.handle)
             self._pending = max(0, self._pending - 1)
             if self._pending == 0 and self._audio.empty():
                 epoch = self._epoch
-                await self.sink.drain()  # returns at once when interrupt() stops the sink
+                if self._unplayed:
+                    await self.sink.drain()  # returns at once when interrupt() stops the sink
                 if epoch == self._epoch:
                     self._unplayed = False
                     self._maybe_idle()
 
-    def _done_one(self, item: _Say) -> None:
-        """`item` produced no audio."""
-        if item.epoch == self._epoch:
-            self._pending = max(0, self._pending - 1)
-            self._maybe_idle()
-
     def _maybe_idle(self) -> None:
         if self._pending == 0 and not self._unplayed and self._audio.empty():
             self._idle.set()
-
-    async def _notify(self, event: SentenceSpoken) -> None:
-        if self._on_spoken is not None:
-            result = self._on_spoken(event)
-            if inspect.isawaitable(result):
-                await result
 

@@ -48,8 +48,8 @@ class Verdict:
 class TurnTaking:
     """The turn-taking state (see the module docstring)."""
 
-    def __init__(self, config: TurnTakingConfig | None = None) -> None:
-        self.config = config or TurnTakingConfig()
+    def __init__(self, config: TurnTakingConfig) -> None:
+        self.config = config
         self._wake_at: float | None = None  # the last wake word not yet used by a command
         self._turn_running = False
         self._playing_until: float | None = None  # stream time the current playback ends (or None)

@@ -15,7 +15,8 @@ from collections.abc import Callable, Coroutine
 from dataclasses import dataclass
 from typing import Any
 
-from robovoice.audio.format import AudioChunk
+from robovoice.assistant.metrics import TurnMetrics
+from robovoice.audio.format import AudioChunk, convert
 from robovoice.audio.stt import Transcriber
 from robovoice.voice.inference import ModelExecutor
 from robovoice.voice.stop import normalise
@@ -24,7 +25,10 @@ WAKE_LOOKBACK_S = 1.6  # a command's audio starts at most this long before its w
 
 
 def wav_bytes(audio: AudioChunk) -> bytes:
-    """A chunk as a complete 16-bit PCM WAV file (what `AudioPart` sends)."""
+    """A chunk as a complete 16-bit PCM WAV file (what `AudioPart` sends); float samples are
+    converted to 16-bit first."""
+    if audio.format.width != 2:
+        audio = convert(audio, audio.format.with_(width=2))
     buf = io.BytesIO()
     with wave.open(buf, "wb") as wf:
         wf.setnchannels(audio.format.channels)
@@ -85,6 +89,16 @@ class Transcribing:
         started = time.perf_counter()
         transcript = await self._executor.run(self.stt.transcribe, audio, hint)
         return transcript.text, (time.perf_counter() - started) * 1000.0
+
+    async def text_for(
+        self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None, hint: str
+    ) -> str:
+        """The transcript of `audio`: the speculative run's when it covers the utterance,
+        else a run now; its model time and the ``transcript`` mark go into `metrics`."""
+        text, took_ms = await speculation if speculation is not None else await self.transcribe(audio, hint)
+        metrics.stt_ms += took_ms
+        metrics.mark("transcript", max(metrics.start, time.perf_counter()))
+        return text
 
     def speculate(self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory, hint: str = "") -> None:
         self.drop()

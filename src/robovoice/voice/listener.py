@@ -1,7 +1,7 @@
-"""The always-on front end: echo cancellation, wake word and VAD over 80 ms frames.
+"""The always-on listener: echo cancellation, wake word and VAD over 80 ms frames.
 
-`FrontEnd.process(chunk)` is blocking (it runs the models) and is called on the front
-end's own executor. Per 80 ms frame of 16 kHz microphone audio it
+`Listener.process(chunk)` is blocking (it runs the models) and is called on the
+listener's own executor. Per 80 ms frame of 16 kHz microphone audio it
 
 1. cancels the robot's own playback (`echo.EchoCanceller` against `PlaybackReference`),
 2. raises the wake threshold while anything plays (robot speech, a call's remote voice),
@@ -13,7 +13,7 @@ end's own executor. Per 80 ms frame of 16 kHz microphone audio it
 5. judges every utterance that overlaps playback with `EchoMeter`: is it the person
    (louder than what the echo canceller leaves) or what is left of the robot's own voice?
 
-It returns `FrontEndResult`s carrying the verdicts; all decisions about turns are the
+It returns `Heard` results carrying the verdicts; all decisions about turns are the
 pipeline's (`turns.TurnTaking`).
 """
 
@@ -83,12 +83,14 @@ class HeardUtterance:
         return self.end - self.start
 
 
-FrontEndEvent = HeardWake | HeardSpeechStart | HeardPause | HeardUtterance
+HeardEvent = HeardWake | HeardSpeechStart | HeardPause | HeardUtterance
 
 
 @dataclass(frozen=True, slots=True)
-class FrontEndResult:
-    events: tuple[FrontEndEvent, ...]
+class Heard:
+    """What the listener heard in one chunk (or at the end of the stream)."""
+
+    events: tuple[HeardEvent, ...]
     now: float  # stream time at the end of the processed audio
     playing: bool  # playback (or its tail) at `now`
     compute_s: float  # wall time spent
@@ -144,18 +146,18 @@ class EchoMeter:
         return share, residual / mic > self.leak(start - 0.016) * self.margin
 
 
-class FrontEnd:
+class Listener:
     """Echo cancellation + wake word + VAD for one microphone stream (see module docstring)."""
 
     def __init__(
         self,
         spotter: WakeWordSpotter,
         segmenter: SpeechSegmenter,
-        reference: PlaybackReference | None = None,
-        echo: EchoConfig | None = None,
+        reference: PlaybackReference | None,
+        echo: EchoConfig,
         *,
         playback_detector: WakeWordDetector | None = None,
-        playback_tail_s: float = 0.3,
+        playback_tail_s: float,
     ) -> None:
         self.spotter = spotter
         self.segmenter = segmenter
@@ -163,7 +165,7 @@ class FrontEnd:
         self._playback_detector = playback_detector if reference is not None else None
         self._playback_scores: deque[tuple[float, float]] = deque()
         self._playback_idle_frames = 0
-        self.config = echo or EchoConfig()
+        self.config = echo
         self._aec = (
             EchoCanceller(partitions=self.config.partitions, step=self.config.step)
             if reference is not None and self.config.enabled
@@ -198,27 +200,27 @@ class FrontEnd:
     def playing_at(self, t: float) -> bool:
         return self.external_playback or t - self._last_playback <= self._tail
 
-    def process(self, chunk: AudioChunk) -> FrontEndResult:
+    def process(self, chunk: AudioChunk) -> Heard:
         """Blocking: run every complete 80 ms frame of `chunk` (16 kHz mono)."""
         if chunk.format.rate != MODEL_FORMAT.rate or chunk.format.channels != 1:
-            raise AudioError(f"the front end takes 16 kHz mono audio, got {chunk.format}")
+            raise AudioError(f"the listener takes 16 kHz mono audio, got {chunk.format}")
         started, cpu = time.perf_counter(), time.thread_time()
-        events: list[FrontEndEvent] = []
+        events: list[HeardEvent] = []
         for frame in self._framer.push(chunk):
             events.extend(self._frame(frame))
         self.now = chunk.end_timestamp
-        return FrontEndResult(tuple(events), self.now, self.playing_at(self.now), time.perf_counter() - started,
+        return Heard(tuple(events), self.now, self.playing_at(self.now), time.perf_counter() - started,
                               time.thread_time() - cpu)
 
-    def flush(self) -> FrontEndResult:
+    def flush(self) -> Heard:
         """End of the stream: close an utterance in progress."""
-        events: list[FrontEndEvent] = []
+        events: list[HeardEvent] = []
         for event in self.segmenter.flush():
             if isinstance(event, SpeechEnded):
                 events.append(self._utterance(event))
-        return FrontEndResult(tuple(events), self.now, False, 0.0)
+        return Heard(tuple(events), self.now, False, 0.0)
 
-    def _frame(self, frame: AudioChunk) -> list[FrontEndEvent]:
+    def _frame(self, frame: AudioChunk) -> list[HeardEvent]:
         t0, t1 = frame.timestamp, frame.end_timestamp
         cleaned = frame
         if self.reference is not None:
@@ -236,7 +238,7 @@ class FrontEnd:
                 self._last_playback = t1
         playing = self.playing_at(t1)
         self.spotter.decider.set_threshold(self.config.playback_wake_threshold if playing else None)
-        events: list[FrontEndEvent] = []
+        events: list[HeardEvent] = []
         for wake in self.spotter.feed(cleaned):
             during = self.playing_at(wake.timestamp)
             near, own = True, 0.0

@@ -1,0 +1,191 @@
+"""Command turns: an addressed utterance -> its transcript (or audio) -> the assistant's turn
+-> the robot's speech. One turn holds the floor at a time (`floor.Floor`).
+
+Data goes one way: the utterance comes from the listener, the turn hands it to the
+assistant, and the turn's own observer (`CommandTurn.on_event`, passed to
+`Assistant.turn`) sends what the assistant produces to speech: its sentences, the tools'
+spoken acknowledgements and progress (`progress.ProgressNarrator`), and takes back an
+acknowledgement not yet played when its tool fails at once. A turn's events carry its
+number and metrics from that observer; nothing is looked up in shared state.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import re
+import time
+from collections.abc import Awaitable, Callable
+from typing import Any, Literal
+
+from robovoice.assistant.events import SentenceReady, ToolCalled, ToolProgressed, ToolReturned, TurnEvent
+from robovoice.assistant.loop import Assistant, TurnResult
+from robovoice.assistant.metrics import TurnMetrics
+from robovoice.llm.base import AudioPart, ContentPart
+from robovoice.voice.answers import AnswerRecorder
+from robovoice.voice.config import PipelineConfig
+from robovoice.voice.events import Emit, TranscriptReady, VoiceTurnFinished, VoiceTurnStarted
+from robovoice.voice.floor import Floor, PipelineStats, report_ignored
+from robovoice.voice.listener import HeardUtterance
+from robovoice.voice.motion import MotionWatch
+from robovoice.voice.progress import ProgressNarrator
+from robovoice.voice.roles import VoiceRoles
+from robovoice.voice.speech import SpeechOutput
+from robovoice.voice.stop import is_stop_command
+from robovoice.voice.stopping import StopController
+from robovoice.voice.turns import TurnTaking, Verdict
+from robovoice.voice.utterance import Transcribing, Transcription, strip_wake_words, trim_to_wake, wav_bytes
+
+WAKE_ONLY_S = 0.2  # without STT: less speech than this after the wake word = wake word alone
+
+
+class Commands:
+    """Starts command turns and holds what they share. `hint` (the speech-to-text hint) and
+    `roles` are replaced when the robot's tools change; `after_turn` runs after each turn's
+    model work (the pipeline refreshes its view of the tools there)."""
+
+    def __init__(
+        self,
+        config: PipelineConfig,
+        assistant: Assistant,
+        *,
+        audio_native: bool,
+        stt: Transcribing | None,
+        turns: TurnTaking,
+        speech: SpeechOutput,
+        narrator: ProgressNarrator,
+        motion: MotionWatch,
+        stopper: StopController,
+        answers: AnswerRecorder,
+        floor: Floor,
+        stats: PipelineStats,
+        emit: Emit,
+        after_turn: Callable[[], Awaitable[None]],
+    ) -> None:
+        self.config = config
+        self.assistant = assistant
+        self.audio_native = audio_native
+        self.stt = stt
+        self.turns = turns
+        self.speech = speech
+        self.narrator = narrator
+        self.motion = motion
+        self.stopper = stopper
+        self.answers = answers
+        self.floor = floor
+        self.stats = stats
+        self.emit = emit
+        self.after_turn = after_turn
+        self.hint = ""
+        self.roles = VoiceRoles()
+
+    def start(
+        self, utt: HeardUtterance, verdict: Verdict, received: float, compute_s: float,
+        speculation: Transcription | None,
+    ) -> None:
+        """A command turn for `utt`, taking the floor (whoever held it is cancelled)."""
+        metrics = TurnMetrics(start=received)
+        metrics.mark("endpoint", received + compute_s)
+        turn = CommandTurn(self, self.floor.new_turn(), metrics)
+        self.floor.take(turn.id, turn.run(utt, verdict, speculation))
+
+
+class CommandTurn:
+    """One command, from its utterance to the end of its speech (see the module docstring)."""
+
+    def __init__(self, commands: Commands, turn_id: int, metrics: TurnMetrics) -> None:
+        self._c = commands
+        self.id = turn_id
+        self.metrics = metrics
+        self._calls: dict[str, ToolCalled] = {}  # by call id
+        self._latest: dict[str, ToolCalled] = {}  # by tool name: progress reports carry no call id
+        self._acks: dict[str, int | None] = {}  # call id -> speech handle of its acknowledgement
+        self._moves: set[str] = set()  # call ids of motion tools under way
+
+    async def run(self, utt: HeardUtterance, verdict: Verdict, speculation: Transcription | None) -> None:
+        c = self._c
+        metrics = self.metrics
+        result: TurnResult | None = None
+        started = cancelled = False
+        try:
+            audio = trim_to_wake(utt.audio, verdict.wake_at)
+            content: str | tuple[ContentPart, ...]
+            text = ""
+            if c.audio_native and (c.stt is None or utt.duration_s > c.config.turns.stop_max_s):
+                if verdict.wake_at is not None and utt.end - verdict.wake_at < WAKE_ONLY_S:
+                    c.turns.rearm(utt.end)
+                    await report_ignored(c.emit, c.stats, "wake_only", utt)
+                    return
+                content = (AudioPart(wav_bytes(audio)),)
+            else:
+                assert c.stt is not None
+                raw = await c.stt.text_for(audio, metrics, speculation, c.hint)
+                text = strip_wake_words(raw, c.config.wake_phrase) if verdict.wake_at is not None else raw.strip()
+                await c.emit(TranscriptReady(text, metrics.stt_ms))
+                if not re.search(r"[A-Za-z0-9]", text):
+                    c.turns.rearm(utt.end)
+                    await report_ignored(c.emit, c.stats, "wake_only" if verdict.wake_at is not None else "empty",
+                                         utt, raw)
+                    return
+                if is_stop_command(text):
+                    await c.stopper.stop(text, utt.end, self.id, metrics)
+                    return
+                content = (AudioPart(wav_bytes(audio)),) if c.audio_native else text
+            mode: Literal["text", "audio"] = "audio" if isinstance(content, tuple) else "text"
+            c.stats.turns += 1
+            started = True
+            c.turns.turn_started()
+            await c.emit(VoiceTurnStarted(self.id, mode, text, audio.duration_s, verdict.follow_up))
+            result = await c.assistant.turn(content, metrics=metrics, observer=self.on_event)
+            c.answers.add(result)
+            c.turns.turn_finished(asked_question=result.reply.rstrip().endswith("?"))
+            self._end_motion()
+            await c.after_turn()  # the tools may have changed during the turn
+            await c.speech.idle(timeout=120.0)
+        except asyncio.CancelledError:
+            cancelled = True
+            if started:
+                c.turns.turn_cancelled()
+            raise
+        finally:
+            self._end_motion()
+            if started:
+                await c.emit(VoiceTurnFinished(self.id, result, cancelled, metrics.as_dict()))
+            c.answers.save(self.id)
+
+    def _end_motion(self) -> None:
+        self._c.motion.forget(self._moves)
+        self._moves.clear()
+
+    def _say(self, text: str | None, kind: str) -> int | None:
+        return self._c.speech.say(text, turn=self.id, kind=kind, metrics=self.metrics) if text else None
+
+    async def on_event(self, event: TurnEvent) -> None:
+        """This turn's observer of the assistant: what it produces goes to speech."""
+        c = self._c
+        now = time.monotonic()
+        match event:
+            case SentenceReady(text):
+                self._say(text, "reply")
+            case ToolCalled(call_id, name, arguments):
+                self._calls[call_id] = self._latest[name] = event
+                if name in c.roles.motion:
+                    self._moves.add(call_id)
+                    c.motion.started(call_id)
+                self._acks[call_id] = self._say(c.narrator.on_call(name, arguments, now), "progress")
+            case ToolProgressed(name, progress, total, message):
+                called = self._latest.get(name)
+                line = c.narrator.on_progress(name, progress, total, message, now,
+                                              called.arguments if called is not None else None)
+                self._say(line, "progress")
+            case ToolReturned(call_id=call_id, name=name, is_error=failed, result=body):
+                self._moves.discard(call_id)
+                c.motion.finished(call_id)
+                ack = self._acks.pop(call_id, None)
+                if failed:
+                    c.speech.withdraw(ack)  # "On my way ..." not yet said: the tool failed at once
+                called = self._calls.get(call_id)
+                given: dict[str, Any] = called.arguments if called is not None else {}
+                self._say(c.narrator.on_result(name, given, failed, body), "result")
+            case _:
+                pass
+        await c.emit(event)

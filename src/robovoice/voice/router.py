@@ -1,0 +1,132 @@
+"""What was heard, and what it becomes: the listener's facts routed to turn-taking, command
+turns, stop checks and speculative speech-to-text.
+
+`Router.handle` runs inside the microphone loop, so it never waits on the network or on a
+model: it decides from what is known now (turn-taking state, `MotionWatch.moving`, which
+answers at once) and hands anything slow to a task of the pipeline's TaskGroup (`Floor`).
+
+- wake word: heard during the robot's own playback -> rejected; while the robot is busy ->
+  barge-in (speech dropped, the active turn cancelled); then turn-taking is told;
+- speech starts or pauses: the motion watch is asked to refresh (for a stop without the
+  wake word); at a pause of an utterance that will need it, transcription starts speculatively;
+- an utterance ends: a command turn (`command.Commands`), a stop check
+  (`stopping.StopController`), or ignored with a reason.
+"""
+
+from __future__ import annotations
+
+import logging
+
+from robovoice.voice.command import Commands
+from robovoice.voice.config import PipelineConfig
+from robovoice.voice.events import BargedIn, Emit, WakeWordHeard, WakeWordRejected
+from robovoice.voice.floor import Floor, PipelineStats, report_ignored
+from robovoice.voice.listener import Heard, HeardPause, HeardSpeechStart, HeardUtterance, HeardWake
+from robovoice.voice.motion import MotionWatch
+from robovoice.voice.speech import SpeechOutput
+from robovoice.voice.stopping import StopController
+from robovoice.voice.turns import Action, TurnTaking
+from robovoice.voice.utterance import Transcribing, trim_to_wake
+from robovoice.voice.vocabulary import STOP_HINT
+
+log = logging.getLogger(__name__)
+
+
+class Router:
+    """See the module docstring."""
+
+    def __init__(
+        self,
+        config: PipelineConfig,
+        *,
+        audio_native: bool,
+        stt: Transcribing | None,
+        turns: TurnTaking,
+        speech: SpeechOutput,
+        motion: MotionWatch,
+        commands: Commands,
+        stopper: StopController,
+        floor: Floor,
+        stats: PipelineStats,
+        emit: Emit,
+    ) -> None:
+        self.config = config
+        self.audio_native = audio_native
+        self.stt = stt
+        self.turns = turns
+        self.speech = speech
+        self.motion = motion
+        self.commands = commands
+        self.stopper = stopper
+        self.floor = floor
+        self.stats = stats
+        self.emit = emit
+
+    async def handle(self, heard: Heard, received: float) -> None:
+        """What the listener heard in one chunk; `received`: when the chunk arrived."""
+        self.stats.frontend_s += heard.compute_s
+        self.stats.frontend_cpu_s += heard.cpu_s
+        self.turns.playback(heard.playing or self.speech.busy, heard.now)
+        if self.turns.expire(heard.now):
+            log.info("wake word not followed by a command; listening again")
+        for event in heard.events:
+            match event:
+                case HeardWake():
+                    await self._on_wake(event)
+                case HeardSpeechStart():
+                    self.motion.want()
+                case HeardPause():
+                    self.motion.want()
+                    self._on_pause(event)
+                case HeardUtterance():
+                    await self._on_utterance(event, received, heard.compute_s)
+        self.floor.changed.set()
+
+    async def _on_wake(self, event: HeardWake) -> None:
+        if not event.near_end:
+            self.stats.rejected_wakes += 1
+            log.info("wake word at %.2f s rejected: the robot's own playback", event.at)
+            await self.emit(WakeWordRejected(event.score, event.at))
+            return
+        if self.floor.busy or self.speech.busy:
+            self.stats.barge_ins += 1
+            cancelled = self.floor.cancel_active()
+            self.speech.interrupt()
+            await self.emit(BargedIn(event.at, cancelled))
+        self.turns.wake(event.at)
+        await self.emit(WakeWordHeard(event.score, event.at, event.during_playback))
+
+    def _on_pause(self, pause: HeardPause) -> None:
+        """Start transcribing at the first pause of an utterance that will need it, so the
+        transcript is (nearly) ready when the end-of-turn silence confirms the end."""
+        if self.stt is None or not self.floor.running:
+            return
+        short = pause.at - pause.onset <= self.config.turns.stop_max_s
+        addressed = self.turns.addressed(pause.onset, pause.at)
+        if self.audio_native and not (addressed and short):
+            return  # audio goes to the model as it is; only short commands are checked for a stop
+        if not addressed and not (self.motion.moving and short):
+            return
+        floor = self.floor
+        self.stt.speculate(pause.onset, pause.at, trim_to_wake(pause.audio, self.turns.pending_wake),
+                           lambda coro: floor.spawn(coro, "voice-stt-speculative"),
+                           self.commands.hint if addressed else STOP_HINT)
+
+    async def _on_utterance(self, utt: HeardUtterance, received: float, compute_s: float) -> None:
+        short = utt.duration_s <= self.config.turns.stop_max_s
+        moving = short and not self.turns.addressed(utt.start, utt.end) and self.motion.moving
+        verdict = self.turns.classify(utt.start, utt.end, moving=moving)
+        own_voice = utt.playback_share > 0.5 and not utt.near_end
+        hint = STOP_HINT if verdict.action is Action.STOP_CHECK else self.commands.hint
+        speculation = self.stt.take(utt.start, utt.end, hint) if self.stt is not None else None
+        if verdict.action is Action.COMMAND and (verdict.wake_at is not None or not own_voice):
+            self.commands.start(utt, verdict, received, compute_s, speculation)
+        elif verdict.action is Action.STOP_CHECK:
+            # no acoustic gate here: a missed stop is worse than a needless one, and the robot's
+            # own "stop" is recognised by its words (`OwnWords`) instead
+            self.floor.check(self.stopper.check(utt, received, speculation))
+        else:
+            if speculation is not None:
+                speculation.cancel()
+            await report_ignored(self.emit, self.stats, "own_voice" if own_voice else verdict.reason or "no_wake_word",
+                                 utt)

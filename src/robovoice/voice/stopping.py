@@ -1,0 +1,118 @@
+"""The spoken stop (DESIGN.md §8): the robot's stop tool, called directly, never behind the model.
+
+`StopController.check` is a stop check: a short utterance heard without the wake word while
+the robot moves, transcribed with the stop words as the hint and matched against the stop
+grammar (`stop.is_stop_command`). `StopController.stop` stops the robot: it cancels the turn
+holding the floor (and the action it started), drops queued speech, calls the tool with the
+``stop`` role (`roles.VoiceRoles.stop`, from the robot's manifests) with a bounded wait, and
+says the outcome. It runs beside a turn, never inside the model's loop.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import time
+
+from robovoice.assistant.events import ToolCalled, ToolReturned
+from robovoice.assistant.loop import TurnResult
+from robovoice.assistant.metrics import TurnMetrics
+from robovoice.assistant.robot_tools import Toolbox
+from robovoice.manifest.voice import fill
+from robovoice.voice.answers import AnswerRecorder
+from robovoice.voice.config import PipelineConfig
+from robovoice.voice.events import Emit, RobotStopped, StopHeard
+from robovoice.voice.floor import Floor, PipelineStats, report_ignored
+from robovoice.voice.listener import HeardUtterance
+from robovoice.voice.roles import VoiceRoles
+from robovoice.voice.speech import SpeechOutput
+from robovoice.voice.stop import is_stop_command
+from robovoice.voice.utterance import OwnWords, Transcribing, Transcription, strip_wake_words
+from robovoice.voice.vocabulary import STOP_HINT
+
+log = logging.getLogger(__name__)
+
+
+class StopController:
+    """See the module docstring. `roles` is replaced when the robot's tools change."""
+
+    def __init__(
+        self,
+        config: PipelineConfig,
+        tools: Toolbox,
+        *,
+        speech: SpeechOutput,
+        floor: Floor,
+        answers: AnswerRecorder,
+        stats: PipelineStats,
+        emit: Emit,
+        stt: Transcribing | None,
+        own_words: OwnWords,
+    ) -> None:
+        self.config = config
+        self.tools = tools
+        self.speech = speech
+        self.floor = floor
+        self.answers = answers
+        self.stats = stats
+        self.emit = emit
+        self.stt = stt
+        self.own_words = own_words
+        self.roles = VoiceRoles()
+
+    async def check(self, utt: HeardUtterance, received: float, speculation: Transcription | None) -> None:
+        """Is this short utterance (no wake word, the robot moving) a stop? Then stop."""
+        metrics = TurnMetrics(start=received)
+        if self.stt is None:
+            await report_ignored(self.emit, self.stats, "no_stt_for_stop_check", utt)
+            return
+        text = await self.stt.text_for(utt.audio, metrics, speculation, STOP_HINT)
+        if not is_stop_command(strip_wake_words(text, self.config.wake_phrase)):
+            await report_ignored(self.emit, self.stats, "not_a_stop", utt, text)
+            return
+        if utt.playback_share > 0.3 and self.own_words.contains(text):
+            await report_ignored(self.emit, self.stats, "own_voice", utt, text)  # the robot heard itself
+            return
+        turn = self.floor.new_turn()
+        try:
+            await self.stop(text, utt.end, turn, metrics)
+        finally:
+            self.answers.save(turn)
+
+    async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics) -> None:
+        """Stop the robot now: the stop tool, straight; the active turn cancelled; no model."""
+        self.stats.stops += 1
+        tool = self.roles.stop
+        cancelled = self.floor.cancel_active()
+        self.speech.interrupt()
+        await self.emit(StopHeard(text, at, cancelled, tool))
+        called = ToolCalled(f"local-stop-{turn}", tool or "", {})
+        result = None
+        started = time.perf_counter()
+        if tool is None:
+            ok, detail = False, "the robot declares no stop tool"
+        else:
+            metrics.mark(f"tool_call:{tool}")
+            try:
+                async with asyncio.timeout(self.config.stop_timeout_s):
+                    outcome = await self.tools.call(tool, {})
+                ok, detail, result = not outcome.is_error, outcome.text, outcome.structured
+            except TimeoutError:
+                ok, detail = False, f"the stop tool did not answer within {self.config.stop_timeout_s:g} s"
+        took_ms = (time.perf_counter() - started) * 1000.0
+        metrics.tools_ms += took_ms
+        metrics.mark(f"tool_result:{tool or 'none'}")
+        log.info("spoken stop: %s (%s)", "robot stopped" if ok else "STOP FAILED", detail)
+        await self.emit(RobotStopped(ok, detail, metrics.marks[f"tool_result:{tool or 'none'}"]))
+        phrases = self.roles.say(tool) if tool else None
+        fields = result if isinstance(result, dict) else {}
+        if ok:
+            reply = fill(phrases.success if phrases else None, fields) or self.config.speech.stop_reply
+        else:
+            reply = fill(phrases.failure if phrases else None, fields) or self.config.speech.stop_failed_reply
+        self.speech.say(reply, turn=turn, kind="stop", metrics=metrics)
+        error = None if ok else (fields.get("error") if isinstance(fields.get("error"), str) else "stop_failed")
+        returned = ToolReturned(called.call_id, called.name, detail, not ok, took_ms, error,
+                                fields if result is not None else None)
+        self.answers.add(TurnResult(reply, (called,) if tool else (), (returned,) if tool else (), metrics))
+        await self.speech.idle(timeout=30.0)
