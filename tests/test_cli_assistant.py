@@ -22,6 +22,8 @@ from robovoice.llm.fake_server import (
     ToolCallReply,
 )
 
+from .distributed.helpers import Child, robovoice
+
 ROBOVOICE = [sys.executable, "-m", "robovoice.cli"]
 DATA = Path(__file__).parent / "data" / "eval"
 needs_model = pytest.mark.usefixtures("local_model_installed")  # tests/conftest.py: fails, never skips
@@ -81,8 +83,8 @@ async def test_eval_json_summary_with_a_scripted_model() -> None:
     summary = json.loads(out)
     assert summary["cases"] == 3 and summary["passed"] == 2 and summary["accuracy"] == pytest.approx(2 / 3, 0.01)
     by_id = {r["id"]: r for r in summary["results"]}
-    assert by_id["nav-kitchen-1"]["passed"] and by_id["nav-kitchen-1"]["calls"] == [
-        {"tool": "navigate_to", "args": {"target": "kitchen"}}]
+    assert by_id["nav-kitchen-1"]["passed"] and [(c["tool"], c["args"]) for c in by_id["nav-kitchen-1"]["calls"]] == [
+        ("navigate_to", {"target": "kitchen"})]
     assert not by_id["proj-on-1"]["passed"] and by_id["proj-on-1"]["reply"] == "Hello!"
     assert summary["p50"] is not None and "first_token" in summary["stages"]
 
@@ -101,3 +103,37 @@ async def test_chat_with_the_embedded_model_drives_to_the_kitchen_even_behind_a_
     assert code == 0, err
     assert "→ navigate_to(target='kitchen')" in out
     assert "robot> " in out.split("← navigate_to ok", 1)[1]  # it answered in words after the drive
+
+
+async def test_chat_with_a_robot_at_an_http_address() -> None:
+    """`robovoice chat --robot http://127.0.0.1:PORT/mcp`: the robot is a running `robovoice serve`."""
+    serve = Child("serve", robovoice("serve", "--robot", "sim://?speed=50", "--transport", "http", "--port", "0",
+                                     "--no-audit-log"))
+    try:
+        url = (await serve.async_wait_for_line("robovoice serve: ready: ", bound=30)).split()[3]
+        script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)),
+                                       TextReply("The projector is on.")]
+        async with FakeOpenAIServer(script) as server:
+            code, out, err = await _run("chat", "--robot", url, "--llm", server.base_url, "--model", server.model,
+                                        stdin="switch the projector on\n")
+        assert code == 0, err
+        assert "→ set_projector_power(on=True)" in out and "← set_projector_power ok" in out
+        assert "robot> The projector is on." in out
+    finally:
+        assert serve.stop() == 0, serve.output()
+
+
+async def test_chat_refuses_a_token_in_the_address_and_a_dead_server(tmp_path: Path) -> None:
+    code, _, err = await _run("chat", "--robot", "http://127.0.0.1:8765/mcp?token=abc", "--llm", "local")
+    assert code == 1 and "no secrets in the URI" in err and "--token-file" in err and "Traceback" not in err
+    token = tmp_path / "token"
+    token.write_text("s3cret\n")
+    code, _, err = await _run("chat", "--robot", f"http://127.0.0.1:{_dead_port()}/mcp", "--token-file", str(token),
+                              "--llm", "local")
+    assert code == 1 and "cannot reach the robot's MCP server at http://127.0.0.1:" in err
+    assert "s3cret" not in err and "Traceback" not in err
+
+
+async def test_eval_only_names_existing_cases() -> None:
+    code, _, err = await _run("eval", str(DATA / "text.jsonl"), "--only", "no-such-case", "--llm", "local")
+    assert code == 1 and "--only: no case with id 'no-such-case'" in err

@@ -6,6 +6,7 @@ import asyncio
 import json
 import shutil
 import signal
+import subprocess
 import sys
 from importlib import resources
 from pathlib import Path
@@ -16,6 +17,8 @@ from mcp import Client
 from robovoice.cli import main
 from robovoice.commands.robot import parse_arguments
 from robovoice.errors import ConfigError
+
+from .distributed.helpers import Child, free_port, robovoice
 
 SIM_TOOLS = {
     "navigate_to", "get_navigation_targets", "cancel_navigation", "return_to_dock", "stop_robot",
@@ -142,7 +145,8 @@ async def test_serve_http_says_ready_serves_and_stops_on_sigterm(tmp_path: Path)
         assert process.stdout is not None
         async with asyncio.timeout(BOUND_S):
             line = (await process.stdout.readline()).decode()
-        assert line.startswith("robovoice serve: ready: http://127.0.0.1:") and line.rstrip().endswith(f"({len(SIM_TOOLS)} tools)")
+        assert line.startswith("robovoice serve: ready: http://127.0.0.1:")
+        assert line.rstrip().endswith(f"({len(SIM_TOOLS)} tools)")
         url = line.split()[3]
         async with Client(url) as client:
             assert {t.name for t in (await client.list_tools()).tools} == SIM_TOOLS
@@ -161,8 +165,6 @@ async def test_serve_http_says_ready_serves_and_stops_on_sigterm(tmp_path: Path)
 
 def test_output_into_a_closed_pipe_ends_quietly() -> None:
     """`robovoice tools --json | head -1`: the reader leaves early; no traceback."""
-    import subprocess
-
     proc = subprocess.Popen([sys.executable, "-m", "robovoice.cli", "tools", "--robot", "sim", "--json"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
     assert proc.stdout is not None and proc.stderr is not None
@@ -173,3 +175,124 @@ def test_output_into_a_closed_pipe_ends_quietly() -> None:
     proc.wait(timeout=BOUND_S)
     assert first.strip()
     assert "Traceback" not in err and "BrokenPipeError" not in err
+
+
+# --- one robot address -------------------------------------------------------------------
+
+
+def test_tools_takes_any_sim_address(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["tools", "--robot", "sim://", "--json"]) == 0
+    assert {tool["name"] for tool in json.loads(capsys.readouterr().out)} == SIM_TOOLS
+    assert main(["tools", "--robot", "sim://?speed=5&nodes=projector,communication", "--json"]) == 0
+    assert {tool["name"] for tool in json.loads(capsys.readouterr().out)} == {
+        "set_projector_power", "start_video_call", "end_video_call", "list_contacts"} | (
+        SIM_TOOLS & {"get_projector_state", "get_call_state"})
+
+
+def test_config_file_names_the_robot(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    config = tmp_path / "robovoice.toml"
+    config.write_text('[robot]\naddress = "sim://?nodes=projector"\n')
+    assert main(["tools", "--config", str(config), "--json"]) == 0
+    assert {tool["name"] for tool in json.loads(capsys.readouterr().out)} == {"set_projector_power"} | (
+        SIM_TOOLS & {"get_projector_state"})
+    config.write_text('[robot]\nrobot = "sim"\nsim_speed = 4\n')
+    assert main(["tools", "--config", str(config)]) == 1
+    assert 'write address = "sim://?speed=4"' in _one_line_error(capsys)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["tools", "--robot", "turtle://"], "supported schemes are sim://, http://, https://, stdio:, memory://"),
+    (["tools", "--robot", "sim://?speed=-2"], "speed must be greater than 0"),
+    (["tools", "--robot", "sim://?sped=2"], "unknown option(s) sped"),
+    (["tools", "--robot", "sim://?speed=2", "--sim-speed", "3"], "two sim speeds"),
+    (["tools", "--middleware", "zenoh://127.0.0.1:7447", "--sim-speed", "3"], "--sim-speed applies to"),
+    (["tools", "--robot", "sim", "--token-file", "t"], "token_file is for an http(s):// MCP server"),
+    (["tools", "--robot", "http://127.0.0.1:1/mcp", "--manifests", "m"], "manifests apply to a robot served here"),
+    (["tools", "--robot", "zenoh://tcp/127.0.0.1:99999"], "port must be a number from 1 to 65535"),
+    (["tools", "--robot", "zenoh://tls/127.0.0.1:7447"], "cannot be the rendezvous"),
+    (["tools", "--middleware", "sim://"], "is not a middleware URI"),
+    (["tools", "--server", "zenoh://"], "--server takes an MCP server"),
+    (["tools", "--robot", "http://127.0.0.1:8765"], "http://127.0.0.1:8765/mcp"),
+    (["serve", "--robot", "http://127.0.0.1:8765/mcp"], "robovoice serve needs the robot's nodes in this process"),
+    (["check-manifests", "somewhere", "--robot", "stdio:robovoice serve"], "checks against the nodes themselves"),
+    (["call", "--robot", "stdio:robovoice serve", "list_contacts", "--audit-log", "a.jsonl"],
+     "--audit-log applies to a robot served here"),
+])
+def test_bad_robot_options_are_one_clear_line(capsys: pytest.CaptureFixture[str], argv: list[str],
+                                              message: str) -> None:
+    assert main(argv) == 1
+    assert message in _one_line_error(capsys)
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["tools", "--sim-speed", "-1"], "argument --sim-speed: expected a number greater than 0, not '-1'"),
+    (["tools", "--sim-speed", "nan"], "argument --sim-speed: expected a number greater than 0"),
+    (["tools", "--middleware", "memory://", "--wait", "-2"], "argument --wait: expected a number of seconds"),
+    (["serve", "--port", "70000"], "argument --port: expected a port from 0"),
+    (["serve", "--host", ""], "argument --host: expected a host name"),
+    (["sim", "--speed", "0"], "argument --speed: expected a number greater than 0, not '0'"),
+    (["chat", "--max-steps", "0"], "argument --max-steps: expected a whole number of at least 1"),
+    (["bench", "mcp", "-n", "-5"], "argument -n: expected a whole number of at least 1"),
+])
+def test_bad_option_values_are_refused_by_the_parser(capsys: pytest.CaptureFixture[str], argv: list[str],
+                                                     message: str) -> None:
+    with pytest.raises(SystemExit) as exited:
+        main(argv)
+    assert exited.value.code == 2
+    assert message in capsys.readouterr().err
+
+
+def test_tools_and_call_of_an_mcp_server_over_stdio(capsys: pytest.CaptureFixture[str]) -> None:
+    server = f"stdio:{sys.executable} -m robovoice.cli serve --robot sim://?speed=5 --no-audit-log"
+    assert main(["tools", "--robot", server, "--json"]) == 0
+    assert {tool["name"] for tool in json.loads(capsys.readouterr().out)} == SIM_TOOLS
+    assert main(["call", "--server", server, "list_contacts"]) == 0
+    assert "Dr. Weber" in capsys.readouterr().out
+
+
+def _serve_http(*args: str) -> tuple[Child, str]:
+    child = Child("serve", robovoice("serve", "--transport", "http", "--port", "0", "--no-audit-log", *args))
+    line = child.wait_for_line("robovoice serve: ready: ", bound=BOUND_S)
+    return child, line.split()[3]
+
+
+def test_tools_and_call_of_a_running_server_over_http(capsys: pytest.CaptureFixture[str]) -> None:
+    child, url = _serve_http("--robot", "sim://?speed=5")
+    try:
+        assert main(["tools", "--robot", url, "--json"]) == 0
+        assert {tool["name"] for tool in json.loads(capsys.readouterr().out)} == SIM_TOOLS
+        assert main(["call", "--server", url, "navigate_to", "target=garage"]) == 1
+        assert "unknown_target" in capsys.readouterr().out
+        dead = url.replace(url.split("/")[2], f"127.0.0.1:{free_port()}")
+        assert main(["tools", "--robot", dead]) == 1
+        assert "cannot reach the robot's MCP server at http://127.0.0.1:" in _one_line_error(capsys)
+    finally:
+        assert child.stop() == 0, child.output()
+
+
+def test_sim_and_serve_meet_on_zenohs_own_endpoint_syntax(tmp_path: Path) -> None:
+    """`zenoh://tcp/127.0.0.1:PORT` (Zenoh's syntax) is the same place as `zenoh://127.0.0.1:PORT`."""
+    port = free_port()
+    sim = Child("sim", robovoice("sim", "--middleware", f"zenoh://tcp/127.0.0.1:{port}?robot=meet",
+                                 "--node", "projector"))
+    try:
+        sim.wait_for_line("robovoice sim: ready", bound=BOUND_S)
+        serve, url = _serve_http("--middleware", f"zenoh://tcp/127.0.0.1:{port}?robot=meet", "--wait", "10")
+        try:
+            assert f"({len({'set_projector_power'} | (SIM_TOOLS & {'get_projector_state'}))} tools)" in serve.lines[-1]
+            code = subprocess.run(robovoice("call", "--robot", url, "set_projector_power", "on=true"),
+                                  capture_output=True, text=True, timeout=BOUND_S)
+            assert code.returncode == 0 and '"on": true' in code.stdout, code.stderr
+        finally:
+            assert serve.stop() == 0, serve.output()
+    finally:
+        assert sim.stop() == 0, sim.output()
+
+
+def test_sim_refuses_a_zenoh_uri_it_cannot_meet_anyone_on() -> None:
+    for uri, form in (("zenoh://tls/127.0.0.1:7447", "zenoh://?connect=tls/127.0.0.1:7447"),
+                      ("zenoh://127.0.0.1:7447/robot", "zenoh://HOST:PORT"),
+                      ("zenoh://tcp/127.0.0.1:99999", "zenoh://tcp/127.0.0.1:7447")):
+        done = subprocess.run(robovoice("sim", "--middleware", uri), capture_output=True, text=True, timeout=BOUND_S)
+        assert done.returncode == 1 and form in done.stderr and "Traceback" not in done.stderr, done.stderr
+        assert "ready" not in done.stdout

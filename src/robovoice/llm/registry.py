@@ -22,6 +22,7 @@ from robovoice.llm.base import Deadlines, LLMBackend
 from robovoice.llm.failover import Backoff, FailoverBackend
 from robovoice.llm.local import LOCAL_DEADLINES, LocalLlamaBackend
 from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.urls import check_http_url
 
 ACCEPTED_FORMS = (
     "'local' (the embedded Qwen2.5-Coder-1.5B model)",
@@ -84,6 +85,15 @@ def backend_from_spec(spec: str | BackendSpec) -> LLMBackend:
         )
     parts = urlsplit(text)
     if parts.scheme in ("http", "https") and parts.netloc:
+        check_http_url(text, "LLM backend", example="http://edge-server:8000/v1#model-name",
+                       secret_fix="give the API key with --api-key-env / --api-key-file (or api_key_env / "
+                                  "api_key_file in the config)")
+        if parts.query:
+            raise ConfigError(f"LLM backend {text!r}: unexpected query '?{parts.query}'; write the server's base "
+                              f"URL, e.g. http://edge-server:8000/v1#model-name")
+        if options.model and parts.fragment and options.model != parts.fragment:
+            raise ConfigError(f"LLM backend {text!r} names model {parts.fragment!r} and --model {options.model!r}; "
+                              f"give one")
         model = options.model or parts.fragment
         if not model:
             hint = f"write it after '#', e.g. {text}#my-model"

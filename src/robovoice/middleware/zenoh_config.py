@@ -170,6 +170,8 @@ class ZenohSettings:
 def _rendezvous(uri: str, netloc: str, path: str, *, explicit: bool) -> str | None:
     """``tcp/HOST:PORT`` from ``zenoh://HOST:PORT`` or Zenoh's ``zenoh://tcp/HOST:PORT``."""
     protocol = "tcp"
+    if netloc in _PROTOCOLS and path in ("", "/"):  # zenoh://tcp/ : Zenoh's syntax with the address missing
+        raise ConfigError(f"{uri}: expected zenoh://{netloc}/HOST:PORT; write {FORM}")
     if path not in ("", "/"):
         if netloc in _RENDEZVOUS_PROTOCOLS:  # zenoh://tcp/127.0.0.1:7447: Zenoh's endpoint syntax
             protocol, netloc = netloc, path[1:].rstrip("/")
