@@ -66,6 +66,11 @@ fi
 say "installing robovoice and its dependencies into .venv"
 $PY -m pip install -q --find-links "$wheel_dir" -e '.[all,dev]'
 
+# --- 4b. ROS 2: rclpy and Fast DDS come with [all] (the ros2 extra); the NavigateToPose interface
+#          package for the example robot and its tests is built once into .venv (docs/ros2.md)
+say "ROS 2 interface package for the example robot"
+bash scripts/build_ros2_interfaces.sh .venv
+
 # --- 5. the local model ------------------------------------------------------------------
 say "preparing the local model"
 .venv/bin/robovoice models prepare
