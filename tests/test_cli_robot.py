@@ -91,6 +91,8 @@ def test_parse_arguments() -> None:
         parse_arguments(["target"])
     with pytest.raises(ConfigError, match="key=value"):
         parse_arguments(["=kitchen"])
+    with pytest.raises(ConfigError, match="'target' given twice"):
+        parse_arguments(["target=kitchen", "target=bedroom"])
 
 
 def _one_line_error(capsys: pytest.CaptureFixture[str]) -> str:

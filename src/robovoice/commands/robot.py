@@ -159,6 +159,8 @@ def parse_arguments(pairs: Sequence[str]) -> dict[str, Any]:
         key, sep, text = pair.partition("=")
         if not sep or not key:
             raise ConfigError(f"expected key=value, got {pair!r} (e.g. target=kitchen, on=true)")
+        if key in out:
+            raise ConfigError(f"argument {key!r} given twice ({pair!r}); give each argument once")
         try:
             out[key] = json.loads(text)
         except ValueError:
