@@ -61,6 +61,7 @@ def test_addresses_parse_to_one_value_each(text: str, expected: object) -> None:
     ("memory://?x=1", "write memory://"),
     ("zenoh://127.0.0.1:99999", "port must be a number from 1 to 65535"),
     ("zenoh://tls/127.0.0.1:7447", "cannot be the rendezvous"),
+    ("ros2://?domain_id=999", "domain_id must be 0..232"),  # checked as an address, before ROS 2 is loaded
     ("http://127.0.0.1:8765", "names no MCP endpoint path"),
     ("http://127.0.0.1:8765/", "http://127.0.0.1:8765/mcp"),
     ("http://127.0.0.1:0/mcp", "port must be a number from 1 to 65535"),

@@ -39,8 +39,8 @@ ADAPTERS: dict[str, Callable[[str], Middleware]] = {"memory": _memory, "zenoh": 
 
 def check_middleware_uri(uri: str) -> None:
     """Check `uri` without creating its adapter (no extra needed): the scheme always, and the
-    whole URI for the adapters whose URI parsers are plain code (memory, zenoh); the others
-    check theirs when opened."""
+    whole URI for the adapters whose URI parsers are plain code (memory, zenoh, ros2); any
+    other checks its own when opened."""
     scheme = urlsplit(uri).scheme if "://" in uri else ""
     if scheme not in ADAPTERS:
         raise UnsupportedURIError(uri, [f"{s}://" for s in ADAPTERS], what="middleware URI")
@@ -50,6 +50,10 @@ def check_middleware_uri(uri: str) -> None:
         from robovoice.middleware.zenoh_config import ZenohSettings
 
         ZenohSettings.from_uri(uri)
+    elif scheme == "ros2":
+        from robovoice.middleware.ros2_config import Ros2Settings
+
+        Ros2Settings.from_uri(uri)
 
 
 def open_middleware(uri: str) -> Middleware:
