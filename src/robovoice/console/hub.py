@@ -111,6 +111,10 @@ class EventHub:
         self.broadcast({"type": "turn_end", "turn": record.id, "source": record.source,
                         "latency_ms": record.latency_ms, "answer": answer})
 
+    @property
+    def voice_turn_open(self) -> bool:
+        return self._voice_turn is not None and self._voice_turn.open
+
     def voice_event(self, event: object, *, answer_url: str | None = None) -> TurnRecord:
         """Place a voice pipeline event in its turn (see the module docstring)."""
         kind = type(event).__name__

@@ -177,6 +177,8 @@ class VoiceBridge:
         if self._hub is None:
             return
         turn = getattr(event, "turn", None)
+        if type(event).__name__ == "SentenceSpoken" and turn is None and not self._hub.voice_turn_open:
+            return  # a typed turn's answer, spoken: that turn shows it already
         url = (f"/api/answers/{turn}.wav" if type(event).__name__ == "VoiceTurnFinished" and isinstance(turn, int)
                else None)
         self._hub.voice_event(event, answer_url=url)
