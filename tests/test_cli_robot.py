@@ -217,6 +217,9 @@ def test_config_file_names_the_robot(capsys: pytest.CaptureFixture[str], tmp_pat
     (["tools", "--robot", "http://127.0.0.1:8765"], "http://127.0.0.1:8765/mcp"),
     (["serve", "--robot", "http://127.0.0.1:8765/mcp"], "robovoice serve needs the robot's nodes in this process"),
     (["check-manifests", "somewhere", "--robot", "stdio:robovoice serve"], "checks against the nodes themselves"),
+    (["sim", "--middleware", "memory://"], "no other process can reach"),
+    (["sim", "--middleware", "sim://"], "is not a middleware URI"),
+    (["sim", "--setup", "driving+dancing"], "known setups are driving, in_call, projector_on"),
     (["call", "--robot", "stdio:robovoice serve", "list_contacts", "--audit-log", "a.jsonl"],
      "--audit-log applies to a robot served here"),
 ])

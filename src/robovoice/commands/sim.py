@@ -41,7 +41,12 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
 
 
 def run(args: argparse.Namespace) -> int:
-    uri = parse_middleware_uri(args.middleware, "--middleware").uri  # a bad URI fails here, before anything starts
+    address = parse_middleware_uri(args.middleware, "--middleware")  # a bad URI fails here, before anything starts
+    if address.scheme == "memory":
+        raise ConfigError("--middleware memory:// is this process's own bus, which no other process can reach; "
+                          "give a network middleware (zenoh://HOST:PORT), or use --robot sim:// in the command "
+                          "that should see the simulated robot")
+    uri = address.uri
     unknown = [part for part in args.setup.split("+") if part and part not in SETUP_NAMES]
     if unknown or args.setup.strip("+") != args.setup or "++" in args.setup:
         raise ConfigError(f"--setup {args.setup!r}: known setups are {', '.join(SETUP_NAMES)}, combined with '+'")
