@@ -4,11 +4,11 @@
 
 - ``navigation``: the action ``/navigate_to_pose`` (``nav2_msgs/action/NavigateToPose``, Nav2's
   fields and type name) drives at 0.5 m/s (times ``--speed``) to the goal pose, with feedback
-  (current pose, distance remaining, times) and cancellation; goals outside the 12 × 8 m map
+  (current pose, distance remaining, times) and cancellation; goals outside the 12 x 8 m map
   are aborted. ``/navigation/stop`` (``std_srvs/srv/Trigger``) stops any drive.
 - ``projector``: the service ``/projector/set_power`` (``std_srvs/srv/SetBool``).
 - ``battery``: ``/battery_state`` (``sensor_msgs/msg/BatteryState``) at 10 Hz.
-- ``camera``: ``/camera/image_raw`` (``sensor_msgs/msg/Image``, 64 × 48 rgb8) at 5 Hz.
+- ``camera``: ``/camera/image_raw`` (``sensor_msgs/msg/Image``, 64 x 48 rgb8) at 5 Hz.
 
 Services are made with queues 100 deep (ROS 2's default of 10 drops concurrent calls). The
 manifests in ``manifests/`` give these nodes a voice (see README.md here and docs/ros2.md).
