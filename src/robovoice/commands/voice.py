@@ -25,6 +25,7 @@ from robovoice.commands.common import (
     add_robot_args,
     backend_from_args,
     config_from_args,
+    positive_float,
     robot_config_from_args,
     warm_up,
 )
@@ -45,7 +46,7 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
                     "writes the robot's answers as WAV files, exits 0 only if every step did the right thing.")
     demo.add_argument("--output-dir", type=Path, default=Path("robovoice-demo"), metavar="DIR",
                       help="where the answers (turn-NN.wav) and the whole conversation go (default robovoice-demo)")
-    demo.add_argument("--sim-speed", type=float, default=2.0, metavar="X",
+    demo.add_argument("--sim-speed", type=positive_float, default=2.0, metavar="X",
                       help="simulated time speed-up, so drives take seconds (default 2)")
     add_llm_args(demo)
     demo.set_defaults(run=run_demo_command)
