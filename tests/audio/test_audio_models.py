@@ -10,7 +10,7 @@ import pytest
 
 from robovoice.audio.bench import normalize_text, word_error_rate
 from robovoice.audio.format import MODEL_FORMAT, PIPER_FORMAT, AudioChunk, convert, rms_dbfs, split_chunk
-from robovoice.audio.stt import MoonshineTranscriber, Transcriber, WhisperTranscriber, strip_wake_phrase
+from robovoice.audio.stt import MoonshineTranscriber, Transcriber, WhisperTranscriber
 from robovoice.audio.tts import PiperSynthesizer, Synthesizer
 from robovoice.audio.vad import SileroVAD, SpeechEnded, SpeechSegmenter, SpeechStarted, VADEvent, VADModel
 from robovoice.audio.wake import (
@@ -22,6 +22,7 @@ from robovoice.audio.wake import (
     resolve_wake_model,
 )
 from robovoice.errors import AudioError, ConfigError
+from robovoice.voice.utterance import strip_wake_words
 
 from .audio_clips import CLIPS, Clip, clip
 
@@ -186,7 +187,7 @@ def test_wake_then_vad_then_stt_gives_the_command(
             continue
         utterances += [e for e in seg.feed(chunk) if isinstance(e, SpeechEnded)]
     assert woke and len(utterances) == 1
-    text = strip_wake_phrase(moonshine.transcribe(utterances[0].audio).text)
+    text = strip_wake_words(moonshine.transcribe(utterances[0].audio).text)
     assert "turn on the projector" in normalize_text(text)
 
 

@@ -4,21 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from robovoice.audio.stt import _repetition, strip_wake_phrase
-
-
-@pytest.mark.parametrize(
-    ("text", "expected"),
-    [
-        ("Hey, Jarvis, turn on the projector.", "turn on the projector."),
-        ("hey jarvis. Go to the kitchen", "Go to the kitchen"),
-        ("Jarvis, stop.", "stop."),
-        ("Turn on the Jarvis mode", "Turn on the Jarvis mode"),
-        ("Hey Jarvis", ""),
-    ],
-)
-def test_strip_wake_phrase(text: str, expected: str) -> None:
-    assert strip_wake_phrase(text) == expected
+from robovoice.audio.stt import _repetition
 
 
 @pytest.mark.parametrize(

@@ -188,3 +188,42 @@ async def test_interrupt_drops_everything_queued_at_once() -> None:
     await executor.aclose()
     assert len(sink.chunks) == 2, "one sentence cut off, the rest never played, then the new one"
     assert speech.take_recording(2) is not None
+
+
+async def test_withdraw_takes_back_only_what_has_not_started_playing() -> None:
+    tts = SlowTts(delay=0.05)
+    sink = PlayingSink(tts.log, seconds=0.2)
+    executor = ModelExecutor("tts-test")
+    speech = SpeechOutput(tts, sink, executor, queue_size=8)
+    async with asyncio.TaskGroup() as group:
+        task = group.create_task(speech.run())
+        first = speech.say("Playing now.")
+        async with asyncio.timeout(10):
+            await sink.playing.wait()
+        second = speech.say("On my way to the garage.")
+        third = speech.say("I don't know where the garage is.")
+        assert not speech.withdraw(first), "already playing"
+        assert speech.withdraw(second) and not speech.withdraw(second)
+        assert speech.say("   ") is None and not speech.withdraw(None)
+        assert await speech.idle(timeout=10)
+        assert third is not None and not speech.withdraw(third), "played"
+        task.cancel()
+    await executor.aclose()
+    assert len(sink.chunks) == 2, "the first and the third sentence played, the withdrawn one never"
+
+
+@pytest.mark.parametrize("width", [2, 4])
+def test_wav_bytes_is_16_bit_pcm_whatever_the_sample_width(width: int) -> None:
+    import io
+    import wave
+
+    from robovoice.audio.format import convert
+    from robovoice.voice.utterance import wav_bytes
+
+    t = np.arange(1600) / 16000
+    x = AudioChunk((0.5 * np.sin(2 * np.pi * 440 * t)).astype(np.float32), MODEL_FORMAT.with_(width=4))
+    chunk = x if width == 4 else convert(x, MODEL_FORMAT)
+    with wave.open(io.BytesIO(wav_bytes(chunk))) as wf:
+        assert (wf.getsampwidth(), wf.getframerate(), wf.getnframes()) == (2, 16000, 1600)
+        samples = np.frombuffer(wf.readframes(1600), dtype="<i2").astype(np.float32) / 32768.0
+    assert np.max(np.abs(samples - as_float32(x.samples))) < 1e-3  # the signal, not float bits read as int16

@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from robovoice.assistant.events import BackendFailed, ToolCalled, ToolReturned
+from robovoice.audio.format import MODEL_FORMAT, silence
 from robovoice.config import VoiceConfig
 from robovoice.llm.base import Deadlines
 from robovoice.llm.failover import FALLBACK_MESSAGE
@@ -30,7 +31,7 @@ from robovoice.voice.events import (
 from robovoice.voice.models import VoiceModels
 from robovoice.voice.vocabulary import STOP_HINT
 
-from .voice_kit import SettableTranscriber, babble, fake_models, tone, voice_session, wait_until, wake_command
+from .voice_kit import SettableTranscriber, babble, fake_models, join, tone, voice_session, wait_until, wake_command
 
 pytestmark = pytest.mark.timeout(90)
 
@@ -291,3 +292,61 @@ async def test_referenced_sink_places_playback_where_it_will_sound() -> None:
     now[0] = 100.3
     sink.stop()  # barge-in: nothing more sounds after now
     assert not reference.playing(100.31, 101.1) and reference.playing(100.1, 100.29)
+
+
+async def test_the_speculative_transcript_is_used_one_stt_run_per_command(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    server.push(TextReply("It is on."), TextReply("It is off."))
+    async with voice_session(fakes, backend, speed=2.0) as s:
+        stt = s.pipeline.stt
+        assert stt is not None
+        for n, said in enumerate(("Hey Jarvis, turn on the projector.", "Hey Jarvis, turn it off."), start=1):
+            transcriber.text = said
+            await s.say(wake_command(), gap_s=0.8)
+            await s.log.wait_for(VoiceTurnFinished, lambda e, n=n: e.turn == n)  # type: ignore[misc]
+            await s.settle()
+            # started at the pause (inside the end-of-turn silence), and that run was the one used
+            assert (transcriber.calls, stt.speculated, stt.reused) == (n, n, n)
+    assert [e.text for e in s.log.of(TranscriptReady)] == ["turn on the projector.", "turn it off."]
+
+
+async def test_a_speculative_transcript_is_dropped_when_the_utterance_goes_on(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    server.push(TextReply("Done."))
+    # what speech-to-text hears depends on how much of the utterance it gets
+    transcriber.by_length = lambda seconds: ("Hey Jarvis, turn on the projector and the light." if seconds > 2.4
+                                             else "Hey Jarvis, turn on the")
+    said = join(tone(0.5), babble(1.0), silence(MODEL_FORMAT, 0.3), babble(1.0, seed=3))
+    async with voice_session(fakes, backend, speed=2.0) as s:
+        await s.say(said)  # a pause too short to end the turn, then more words
+        started = await s.log.wait_for(VoiceTurnStarted)
+        await s.settle()
+    stt = s.pipeline.stt
+    assert stt is not None and stt.speculated == 2 and stt.reused == 1
+    assert started.text == "turn on the projector and the light."
+    assert server.requests[0].last_user_text == "turn on the projector and the light."
+    assert transcriber.durations[-1] > 2.4, "the transcript used covers the whole utterance"
+
+
+async def test_the_demo_takes_wake_phrase_and_vocabulary_from_the_config(
+    transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend, tmp_path: Path
+) -> None:
+    from robovoice.assistant.connect import connect_robot
+    from robovoice.audio.fakes import ToneSynthesizer
+    from robovoice.config import RobotConfig
+    from robovoice.voice.demo import Step, run_demo
+
+    server.push(TextReply("Hello."))
+    transcriber.text = "Hello robot, what is that shed called?"
+    config = VoiceConfig(wake_phrase="hello robot", vocabulary=("garden shed", "Grandma Ruth"))
+    async with connect_robot(RobotConfig(address="sim://?speed=10")) as robot:
+        assert robot.sim is not None
+        report = await run_demo(fake_models(transcriber), backend, robot.tools, robot.sim, output_dir=tmp_path,
+                                user_voice=ToneSynthesizer(seconds_per_char=0.02, frequency=1000.0),
+                                steps=[Step("a question", say="x" * 40)], config=config, step_timeout_s=30.0)
+    assert report.ok
+    assert transcriber.hints and transcriber.hints[-1].startswith("Hello Robot. ")
+    assert "garden shed, Grandma Ruth" in transcriber.hints[-1]
+    assert server.requests[0].last_user_text == "what is that shed called?", "its wake phrase was stripped"

@@ -143,6 +143,8 @@ def test_long_actions_are_acknowledged_then_reported_at_most_every_interval() ->
     ("Jarvis, stop!", "stop!"),
     ("Hey Jarvis.", ""),
     ("Turn on the projector.", "Turn on the projector."),
+    ("hey jarvis. Go to the kitchen", "Go to the kitchen"),
+    ("Turn on the Jarvis mode", "Turn on the Jarvis mode"),
 ])  # fmt: skip
 def test_wake_phrase_is_removed_from_the_transcript(heard: str, command: str) -> None:
     assert strip_wake_words(heard) == command

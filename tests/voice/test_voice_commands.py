@@ -38,9 +38,14 @@ async def test_demo_runs_the_scripted_conversation(tmp_path: Path) -> None:
         code, out = await _robovoice("demo", "--output-dir", str(tmp_path), "--llm", f"{server.base_url}#fake-model")
     assert code == 0, out[-3000:]
     assert "8/8 steps did the right thing" in out
-    for needle in ("→ navigate_to(target=\"kitchen\")", "wake phrase in the robot's own playback: ignored",
-                   "! STOP", "■ robot stopped", "latency from end of speech: transcript"):
+    for needle in ("→ navigate_to(target=\"kitchen\")", "! STOP (\"Stop the robot!\"): stop_robot, straight",
+                   "■ robot stopped", "latency from end of speech: transcript"):
         assert needle in out, needle
+    # The remote caller's "Hey Jarvis" never woke the robot. Whether the echo canceller left enough
+    # of it for the wake detector to fire (and be rejected as the robot's own playback) depends on
+    # how the machine's timing falls, so the test asserts what holds either way.
+    remote = out.split("── 4. remote participant ──")[1].split("── 5.")[0]
+    assert "✔ ok" in remote and "· wake word (" not in remote and "→ " not in remote, remote
     answers = sorted(tmp_path.glob("turn-*.wav"))
     assert len(answers) >= 6 and (tmp_path / "conversation.wav").is_file()
     with wave.open(str(answers[0])) as wf:

@@ -74,17 +74,22 @@ def sim_voice_roles() -> VoiceRoles:
 
 
 class SettableTranscriber:
-    """Speech-to-text fake: returns `text` (set by the test before each utterance)."""
+    """Speech-to-text fake: returns `text` (set by the test before each utterance), or what
+    `by_length` gives for the audio's duration; remembers each run's hint and duration."""
 
     def __init__(self, text: str = "") -> None:
         self.text = text
+        self.by_length: Callable[[float], str] | None = None
         self.calls = 0
         self.hints: list[str] = []
+        self.durations: list[float] = []
 
     def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
         self.calls += 1
         self.hints.append(hint)
-        return Transcript(self.text, audio.duration_s)
+        self.durations.append(audio.duration_s)
+        text = self.by_length(audio.duration_s) if self.by_length is not None else self.text
+        return Transcript(text, audio.duration_s)
 
 
 def fake_models(transcriber: SettableTranscriber | None = None) -> VoiceModels:
@@ -211,6 +216,7 @@ async def voice_session(
         async with asyncio.TaskGroup() as group:
             group.create_task(pipeline.run(finish_timeout_s=15.0), name="pipeline")
             try:
+                await room.until(room.now + 0.01)  # listening: the robot's tools and voice roles are known
                 yield Session(room, pipeline, sim, link.tools, log)
             finally:
                 room.close()

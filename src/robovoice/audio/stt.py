@@ -15,7 +15,6 @@ import importlib.util
 import logging
 import math
 import os
-import re
 import threading
 import time
 from dataclasses import dataclass
@@ -49,18 +48,6 @@ class Transcriber(Protocol):
     that cannot use one ignores it."""
 
     def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript: ...
-
-
-def strip_wake_phrase(text: str, phrase: str = "hey jarvis") -> str:
-    """Remove the wake phrase (and punctuation after it) from the start of a transcript:
-    "Hey, Jarvis, turn on the projector." -> "turn on the projector." The words before the
-    last one are optional ("Jarvis, stop." -> "stop.")."""
-    words = [re.escape(w) for w in phrase.lower().split()]
-    if not words:
-        return text.strip()
-    optional = "".join(rf"(?:{w}\W+)?" for w in words[:-1])
-    pattern = rf"^\W*{optional}{words[-1]}\b[\s,.!?;:-]*"
-    return re.sub(pattern, "", text.strip(), count=1, flags=re.IGNORECASE)
 
 
 def _to_model_input(audio: AudioChunk) -> np.ndarray:

@@ -83,6 +83,8 @@ class Transcribing:
         self.stt = stt
         self._executor = executor
         self._speculation: _Speculation | None = None
+        self.speculated = 0  # speculative runs started
+        self.reused = 0  # ... whose transcript was used for the utterance
 
     async def transcribe(self, audio: AudioChunk, hint: str = "") -> tuple[str, float]:
         """(text, model milliseconds). `hint`: see `Transcriber.transcribe`."""
@@ -102,6 +104,7 @@ class Transcribing:
 
     def speculate(self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory, hint: str = "") -> None:
         self.drop()
+        self.speculated += 1
         self._speculation = _Speculation(onset, at, create_task(self.transcribe(audio, hint)), hint)
 
     def drop(self) -> None:
@@ -116,6 +119,7 @@ class Transcribing:
         if spec is None:
             return None
         if abs(spec.onset - start) < 1e-6 and spec.at >= end - 1e-6 and spec.hint == hint:
+            self.reused += 1
             return spec.task
         spec.task.cancel()
         return None
