@@ -25,6 +25,7 @@ from robovoice.urls import check_port, positive_number, split_host_port
     (" sim:// ", SimAddress()),
     ("sim://?speed=2", SimAddress(2.0)),
     ("sim://?speed=0.5&nodes=navigation,base", SimAddress(0.5, ("navigation", "base"))),
+    ("sim://?speed=1.23456789", SimAddress(1.23456789)),
     ("memory://", MiddlewareAddress("memory://")),
     ("zenoh://127.0.0.1:7447?robot=r1", MiddlewareAddress("zenoh://127.0.0.1:7447?robot=r1")),
     ("zenoh://tcp/127.0.0.1:7447", MiddlewareAddress("zenoh://tcp/127.0.0.1:7447")),

@@ -43,7 +43,8 @@ class SimAddress:
     nodes: tuple[str, ...] | None = None
 
     def __str__(self) -> str:
-        options = ([f"speed={self.speed:g}"] if self.speed is not None else []) + (
+        speed = None if self.speed is None else float(self.speed)
+        options = ([f"speed={int(speed) if speed.is_integer() else speed!r}"] if speed is not None else []) + (
             [f"nodes={','.join(self.nodes)}"] if self.nodes is not None else [])
         return "sim://" + ("?" + "&".join(options) if options else "")
 
@@ -196,5 +197,5 @@ def parse_middleware_uri(text: str, what: str = "middleware URI") -> MiddlewareA
 def with_sim_speed(address: RobotAddress, speed: float | None) -> RobotAddress:
     """`address` with its sim speed filled in where it gives none (others unchanged)."""
     if isinstance(address, SimAddress) and address.speed is None and speed is not None:
-        return SimAddress(speed, address.nodes)
+        return SimAddress(float(speed), address.nodes)
     return address
