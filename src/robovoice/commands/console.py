@@ -13,9 +13,18 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from robovoice.commands.common import add_llm_args, backend_from_args, config_from_args, warm_up
+from robovoice.commands.common import (
+    add_llm_args,
+    add_robot_args,
+    backend_from_args,
+    config_from_args,
+    host_name,
+    port_number,
+    robot_config_from_args,
+    warm_up,
+)
 from robovoice.commands.signals import CancelOnSignals
-from robovoice.config import Config, RobotConfig
+from robovoice.config import Config
 from robovoice.errors import ConfigError
 
 DEFAULT_PORT = 8780
@@ -27,28 +36,22 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
         description="Serves one page: the robot live on its map, the conversation with every tool call, "
                     "talking through the browser's microphone, tools by hand, the audit log; and its API "
                     "(docs/console.md). Same security as `serve --transport http`.")
-    robot = console.add_argument_group("robot (default: [robot] address of the config, else sim://)")
-    robot.add_argument("--robot", metavar="ADDR", help="sim://, a middleware URI, http(s)://host:port/mcp or stdio:CMD")
-    robot.add_argument("--manifests", type=Path, metavar="DIR", help="manifest folder (robots served here)")
-    robot.add_argument("--robot-token-file", type=Path, metavar="F", help="bearer token of an http(s) robot")
+    add_robot_args(console, token_file=False)
+    console.add_argument("--robot-token-file", type=Path, metavar="F", dest="robot_token_file",
+                         help="the bearer token of an http(s):// robot address")
     web = console.add_argument_group("the page")
-    web.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1: this machine only)")
-    web.add_argument("--port", type=int, default=DEFAULT_PORT, help=f"port (default {DEFAULT_PORT}; 0: any free one)")
+    web.add_argument("--host", type=host_name, default="127.0.0.1",
+                     help="bind address (default 127.0.0.1: this machine only; any other needs --token-file)")
+    web.add_argument("--port", type=port_number, default=DEFAULT_PORT,
+                     help=f"port (default {DEFAULT_PORT}; 0: any free port)")
     web.add_argument("--token-file", type=Path, metavar="F",
-                     help="bearer token the page and API require (needed for a non-loopback --host)")
-    web.add_argument("--allowed-host", action="append", default=[], metavar="NAME",
-                     help="a further Host/Origin name clients use to reach the console (repeatable)")
+                     help="require this bearer token on the page, the API and the WebSockets (a browser signs "
+                          "in once at /login)")
+    web.add_argument("--allow-host", action="append", default=[], type=host_name, metavar="NAME",
+                     help="also accept this Host/Origin name, e.g. robot.local (repeatable)")
     web.add_argument("--no-voice", action="store_true", help="no microphone or speech (no voice models loaded)")
     add_llm_args(console)
     console.set_defaults(run=run_console_command)
-
-
-def robot_config(args: argparse.Namespace, config: Config) -> RobotConfig:
-    base = config.robot
-    if args.robot is None and args.manifests is None and args.robot_token_file is None:
-        return base
-    return RobotConfig(address=args.robot or base.address, manifests=args.manifests or base.manifests,
-                       token_file=args.robot_token_file or base.token_file)
 
 
 def run_console_command(args: argparse.Namespace) -> int:
@@ -64,7 +67,7 @@ async def _console(args: argparse.Namespace) -> int:
     config = config_from_args(args)
     token = read_token_file(args.token_file) if args.token_file else None
     check_console_bind(args.host, token)  # before anything is loaded
-    robot = robot_config(args, config)
+    robot = robot_config_from_args(args, config)
     backend = backend_from_args(args, config)
     try:
         async with connect_robot(robot) as connection:
@@ -72,7 +75,7 @@ async def _console(args: argparse.Namespace) -> int:
             console = Console(connection.tools, backend, voice=voice, robot_name=robot.address)
             await warm_up(backend, await connection.tools.specs())
             async with console_server(console, host=args.host, port=args.port, token=token,
-                                      allowed_hosts=args.allowed_host) as endpoint:
+                                      allowed_hosts=args.allow_host) as endpoint:
                 print(f"robovoice console: {endpoint.url}  (robot {robot.address}, model {backend.name}"
                       f"{', voice models loading' if voice else ', no voice'}; Ctrl-C to end)", file=sys.stderr,
                       flush=True)
