@@ -8,7 +8,7 @@ from robovoice.assistant.connect import connect_robot
 from robovoice.config import RobotConfig
 from robovoice.eval.cases import Case
 from robovoice.eval.runner import run_eval
-from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
+from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ScriptedReply, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
 
 
@@ -27,7 +27,7 @@ async def test_the_report_says_what_reached_the_robot() -> None:
         case(id="negated", text="Don't switch the projector on", expect=[], forbid=["set_projector_power"]),
         case(id="read-only", text="How is the battery?", expect=[], forbid=["get_battery_state"]),
     ]
-    script = [
+    script: list[ScriptedReply] = [
         call("navigate_to", target="lounge"), TextReply("I am in the living room."),
         call("navigate_to", target="garage"), TextReply("I don't know the garage."),
         call("set_projector_power", on=True), TextReply("The projector is on."),

@@ -182,7 +182,7 @@ async def test_closing_the_stream_early_is_not_a_failure(stack: AsyncExitStack, 
     events = llm.stream(USER, tools)
     first = await anext(events)
     assert first == TextDelta("a ")
-    await events.aclose()  # type: ignore[attr-defined]  # barge-in: the caller stops listening
+    await events.aclose()  # barge-in: the caller stops listening
     assert llm.health()[0].healthy
     events = llm.stream(USER, tools)
     assert isinstance([e async for e in events][-1], Finished)

@@ -128,7 +128,7 @@ async def test_abandoned_turns_do_not_break_the_next(local: LocalLlamaBackend, t
         local.deadlines = PATIENT
     events = local.stream([SYSTEM, ChatMessage("user", "Tell me a long story about robots.")], [])
     assert isinstance(await anext(events), TextDelta)
-    await events.aclose()  # type: ignore[attr-defined]  # barge-in
+    await events.aclose()  # barge-in
     events_after = await turn(local, "Please drive to the kitchen", tools)
     assert [c.name for c in calls(events_after)] == ["navigate_to"]
 

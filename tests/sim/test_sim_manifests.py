@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from robovoice.manifest import check_manifest_dir
-from robovoice.manifest.model import Manifest
+from robovoice.manifest.model import Manifest, SnapshotDecl, ToolDecl
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim import NODE_NAMES
 from robovoice.sim.node import manifest_path
@@ -52,8 +52,12 @@ def test_one_valid_manifest_per_node() -> None:
         assert manifest.description
 
 
+def _declared(manifest: Manifest) -> list[ToolDecl | SnapshotDecl]:
+    return [*manifest.tools, *manifest.snapshots]
+
+
 def test_exactly_the_design_tool_surface() -> None:
-    operator = {d.name: node for node, m in _manifests().items() for d in (*m.tools, *m.snapshots) if not d.for_model}
+    operator = {d.name: node for node, m in _manifests().items() for d in _declared(m) if not d.for_model}
     assert operator == OPERATOR_TOOLS
     tools = {t.name: t for m in _manifests().values() for t in m.tools if t.for_model}
     snapshots = {s.name: s for m in _manifests().values() for s in m.snapshots if s.for_model}

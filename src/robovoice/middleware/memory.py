@@ -11,7 +11,7 @@ import asyncio
 import json
 import logging
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Awaitable, Callable, Mapping
 from dataclasses import dataclass, field
 
 from robovoice.errors import CallTimeoutError, NodeUnavailableError, RobotFailure
@@ -163,8 +163,8 @@ class MemoryMiddleware:
                                details={"node": node, "action": action})
         return await self._run(hosted, action, handler(_copy(dict(args)), on_feedback), timeout)
 
-    async def _run(self, hosted: _HostedNode, name: str, work: object, timeout: float) -> JSON:
-        task: asyncio.Task[JSON] = asyncio.ensure_future(work)  # type: ignore[arg-type]  # a coroutine
+    async def _run(self, hosted: _HostedNode, name: str, work: Awaitable[JSON], timeout: float) -> JSON:
+        task: asyncio.Task[JSON] = asyncio.ensure_future(work)
         hosted.in_flight.add(task)
         try:
             async with asyncio.timeout(timeout):
