@@ -58,6 +58,7 @@ from robovoice.mcp_server import (
     wait_for_tools,
 )
 
+DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
 _FIRST_SENTENCE = re.compile(r"(?<![A-Z][a-z])\.\s")
 DEFAULT_WAIT_S = 3.0
@@ -88,9 +89,9 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
     add_robot_args(serve, token_file=False, config=True)
     _add_wait_arg(serve)
     serve.add_argument("--transport", choices=["stdio", "http"], default="stdio", help="default: stdio")
-    serve.add_argument("--host", type=host_name, default="127.0.0.1",
+    serve.add_argument("--host", type=host_name, default=None,
                        help="HTTP bind address (default 127.0.0.1; any other needs --token-file)")
-    serve.add_argument("--port", type=port_number, default=DEFAULT_PORT,
+    serve.add_argument("--port", type=port_number, default=None,
                        help=f"HTTP port (default {DEFAULT_PORT}; 0: any free port)")
     serve.add_argument("--token-file", type=Path, metavar="F",
                        help="HTTP: require 'Authorization: Bearer <the token in F>'")
@@ -242,11 +243,17 @@ def _print_manifest_errors(side: RobotSide | None, out: TextIO) -> None:
 def run_serve(args: argparse.Namespace) -> int:
     config = _robot_config(args)
     config.local("robovoice serve")  # before anything starts
+    if args.transport != "http":
+        given = [flag for flag, value in (("--host", args.host), ("--port", args.port),
+                                          ("--allow-host", args.allow_host), ("--token-file", args.token_file))
+                 if value not in (None, [])]
+        if given:
+            raise ConfigError(f"{', '.join(given)} appl{'ies' if len(given) == 1 else 'y'} to --transport http only")
+    args.host = args.host or DEFAULT_HOST
+    args.port = DEFAULT_PORT if args.port is None else args.port
     token = read_token_file(args.token_file) if args.token_file else None
     if args.transport == "http":
         check_bind(args.host, token)  # before starting anything
-    elif token is not None:
-        raise ConfigError("--token-file applies to --transport http only")
     return _run(lambda stop: _serve(args, config, token, stop), graceful=True)
 
 
