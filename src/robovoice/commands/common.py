@@ -38,7 +38,14 @@ from robovoice.llm.registry import BackendSpec, api_key_from, chain_from_specs
 
 log = logging.getLogger(__name__)
 
-ADDRESS_FORMS = "sim (= sim://), sim://?speed=2, memory://, zenoh://HOST:PORT, http(s)://HOST:PORT/mcp, stdio:COMMAND"
+
+
+def address_forms() -> str:
+    """The address forms for help texts, middleware schemes from the adapter table."""
+    from robovoice.middleware import ADAPTERS
+
+    middleware = ", ".join(f"{scheme}://…" for scheme in ADAPTERS)
+    return f"sim (= sim://), sim://?speed=2, a middleware URI ({middleware}), http(s)://HOST:PORT/mcp, stdio:COMMAND"
 
 
 # --- strict option values ----------------------------------------------------------------
@@ -96,9 +103,8 @@ def add_robot_args(parser: argparse.ArgumentParser, *, default_speed: float = 1.
     has its own). `config`: offer --config (commands without the LLM options)."""
     group = parser.add_argument_group(f"robot ({required_hint})")
     where = group.add_mutually_exclusive_group()
-    where.add_argument("--robot", metavar="ADDRESS", help=f"which robot: {ADDRESS_FORMS}")
-    where.add_argument("--middleware", metavar="URI",
-                       help="serve the nodes present on this middleware (memory://, zenoh://HOST:PORT, ...)")
+    where.add_argument("--robot", metavar="ADDRESS", help=f"which robot: {address_forms()}")
+    where.add_argument("--middleware", metavar="URI", help="serve the nodes present on this middleware URI")
     where.add_argument("--server", metavar="URL",
                        help="a running robot's MCP server: http(s)://HOST:PORT/mcp, or 'stdio:<command>'")
     group.add_argument("--manifests", type=Path, metavar="DIR",
