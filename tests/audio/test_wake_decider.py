@@ -83,7 +83,7 @@ def test_reset_forgets_refractory_state() -> None:
 )
 def test_bad_config_is_refused(kwargs: dict[str, float]) -> None:
     with pytest.raises(ConfigError):
-        WakeDeciderConfig(**kwargs)  # type: ignore[arg-type]
+        WakeDeciderConfig(**kwargs)  # type: ignore[arg-type]  # one bad option at a time, by name
 
 
 def test_spotter_frames_audio_and_stamps_events_with_frame_end() -> None:

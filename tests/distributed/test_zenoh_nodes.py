@@ -52,7 +52,8 @@ async def test_sim_nodes_join_with_manifests_and_serve(spawn: Callable[..., Chil
     await until(lambda: set(client.nodes()) == SIM_NODES, what="all sim nodes present")
     navigation = client.nodes()["navigation"]
     assert navigation.manifest is not None and navigation.manifest["node"] == "navigation"
-    assert navigation.rpc("drive_to") is not None and navigation.rpc("drive_to").kind == "action"  # type: ignore[union-attr]
+    drive_to = navigation.rpc("drive_to")
+    assert drive_to is not None and drive_to.kind == "action"
     targets = await client.call("navigation", "list_targets", {}, timeout=5)
     assert "kitchen" in targets["places"]
     with pytest.raises(RobotFailure) as err:

@@ -91,7 +91,7 @@ async def test_closing_early_stops_the_worker(executor: ThreadPoolExecutor) -> N
     stream = ThreadStream(executor, produce, deadlines=FAST, where="test")
     items = stream.run()
     assert await anext(items) == 0
-    await items.aclose()  # type: ignore[attr-defined]
+    await items.aclose()  # type: ignore[attr-defined]  # run() is an async generator, typed as an iterator
     assert stream.pending is not None
     await stream.pending
     assert len(produced) < 1000

@@ -45,7 +45,7 @@ async def collect(events: AsyncIterator[LLMEvent]) -> list[LLMEvent]:
 
 
 def backend(srv: FakeOpenAIServer, **kwargs: object) -> OpenAICompatBackend:
-    return OpenAICompatBackend(srv.base_url, srv.model, deadlines=FAST, **kwargs)  # type: ignore[arg-type]
+    return OpenAICompatBackend(srv.base_url, srv.model, deadlines=FAST, **kwargs)  # type: ignore[arg-type]  # any of its keyword options
 
 
 def make_wav(frames: int = 1600, rate: int = 16000) -> bytes:

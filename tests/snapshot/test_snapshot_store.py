@@ -160,7 +160,7 @@ async def test_untrack_closes_the_subscription(tracked: tuple[SnapshotStore, Fak
 async def test_track_twice_subscribes_once(tracked: tuple[SnapshotStore, FakeBus]) -> None:
     store, bus = tracked
     first = bus.subscriptions["battery"]
-    await store.track(bus, "battery")  # type: ignore[arg-type]
+    await store.track(bus, "battery")  # type: ignore[arg-type]  # a fake bus: only the subscribe() track uses
     assert bus.subscriptions["battery"] is first
 
 
@@ -171,14 +171,14 @@ async def test_failed_subscribe_leaves_nothing(clock: FakeClock) -> None:
 
     store = SnapshotStore(clock=clock)
     with pytest.raises(RuntimeError):
-        await store.track(Broken(), "pose")  # type: ignore[arg-type]
+        await store.track(Broken(), "pose")  # type: ignore[arg-type]  # a bus whose subscribe() fails, nothing else
     assert not store.is_tracked("pose")
 
 
 async def test_image_detection(clock: FakeClock) -> None:
     store = SnapshotStore(clock=clock)
     bus = FakeBus()
-    await store.track(bus, "camera")  # type: ignore[arg-type]
+    await store.track(bus, "camera")  # type: ignore[arg-type]  # a fake bus: only the subscribe() track uses
     bus.publish("camera", {"mime_type": "image/jpeg", "data": "/9j/4AAQ", "width": 64})
     snap = store.read("camera", 1.0)
     assert snap.is_image
