@@ -4,14 +4,19 @@ turn-taking, barge-in, self-voice rejection and a local spoken stop (docs/voice.
 Modules, in data-flow order:
 
 - `echo`: the playback reference and the echo canceller (self-voice rejection, part 1);
-- `frontend`: echo cancellation + wake word + VAD per 80 ms frame, with verdicts on what
+- `listener`: echo cancellation + wake word + VAD per 80 ms frame, with verdicts on what
   was heard during playback (part 2);
+- `router`: what was heard becomes a command turn, a stop check, or nothing (never waiting);
 - `turns`: turn-taking (listening / woken / in-turn / speaking / follow-up), pure logic;
-- `stop`: the local stop phrases; `motion`: is the robot moving?;
+- `command`: one command turn, utterance -> assistant -> speech, with its own observer;
+- `stopping`, `stop`: the spoken stop and its phrases; `motion`: is the robot moving?;
+- `roles`: the robot's stop / motion / pose tools and phrases, from its manifests;
 - `speech`: sentence-by-sentence speech output, synthesis overlapping playback, barge-in;
-- `progress`: short spoken progress of long actions;
-- `inference`: per-model executors, the one bridge from blocking models to asyncio;
-- `pipeline`: all of it together; `models`: loading the real models;
+- `progress`: what is said while a tool runs; `answers`: results and recorded answers;
+- `floor`: who holds the floor (the active turn, stop checks); `inference`: per-model
+  executors, the one bridge from blocking models to asyncio;
+- `pipeline`: all of it assembled; `config`: its settings from ``[voice]``; `models`: loading
+  the real models;
 - `room`: a simulated room (microphone, speaker, echo) for headless runs;
 - `evaluation`: audio cases for `robovoice eval`; `demo`: the scripted demo; `bench`: benchmarks.
 

@@ -63,9 +63,13 @@ class Step:
 
 @dataclass
 class StepLog:
-    """What happened during one step."""
+    """What happened during one step; `motion`: the robot's motion tools (its manifests' roles)."""
 
     events: list[PipelineEvent] = field(default_factory=list)
+    motion: frozenset[str] = frozenset()
+
+    def drives(self) -> list[ToolCalled]:
+        return [c for c in self.calls() if c.name in self.motion]
 
     def calls(self) -> list[ToolCalled]:
         return [e for e in self.events if isinstance(e, ToolCalled)]
@@ -160,10 +164,10 @@ def _stays_at(place: str) -> Check:
     def check(state: SimState, step: StepLog) -> str | None:
         if state.moving or state.nearest_place != place:
             return "the robot drove off to some other place"
-        arrived = [r for r in step.returned() if r.name == "navigate_to" and not r.is_error]
+        arrived = [r for r in step.returned() if r.name in step.motion and not r.is_error]
         if arrived:
             return "a drive to an unknown place succeeded"
-        said = [e.text for e in step.events if isinstance(e, SentenceSpoken) and e.text.startswith("On my way")]
+        said = [e.text for e in step.events if isinstance(e, SentenceSpoken) and e.kind == "progress"]
         return f"it said {said[0]!r} for a drive that failed at once" if said else None
 
     return check
@@ -173,7 +177,7 @@ def _stopped(state: SimState, step: StepLog) -> str | None:
     stops = [e for e in step.events if isinstance(e, RobotStopped)]
     if not stops or not stops[-1].ok:
         return "the spoken stop did not reach the robot"
-    if "navigate_to" not in step.call_names():
+    if not step.drives():
         return "the drive never started"
     return "the robot is still moving" if state.moving else None
 
@@ -260,7 +264,7 @@ async def run_demo(
     checked: list[StepChecked] = []
 
     async def perform(index: int, step: Step) -> None:
-        recorder.step = StepLog()
+        recorder.step = StepLog(motion=pipeline.roles.motion)
         t0 = time.perf_counter()
         if on_step is not None:
             on_step(StepStarted(index, step))
