@@ -33,6 +33,12 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     zenoh.add_argument("-n", type=positive_int, default=1000, help="RPC calls (default 1000)")
     zenoh.set_defaults(run=_zenoh)
 
+    ros2 = sub.add_parser("ros2", help="MCP tool call over ROS 2 vs a bare rclpy client on the same service; "
+                                       "30 Hz image ingest and memory; time to notice a killed node")
+    ros2.add_argument("--rounds", type=positive_int, default=6, help="interleaved rounds of 50 calls (default 6)")
+    ros2.add_argument("--domain", type=int, default=231, help="ROS_DOMAIN_ID to run on (default 231)")
+    ros2.set_defaults(run=_ros2)
+
     llm = sub.add_parser("llm", help="the embedded model: load, warm-up, prefix reuse, first-event latency")
     llm.add_argument("--repeats", type=positive_int, default=1)
     llm.add_argument("--threads", type=positive_int, default=2)
@@ -85,6 +91,12 @@ def _zenoh(args: argparse.Namespace) -> int:
     from robovoice.middleware.bench_zenoh import run_zenoh_bench
 
     return _print(asyncio.run(run_zenoh_bench(calls=args.n)))
+
+
+def _ros2(args: argparse.Namespace) -> int:
+    from robovoice.middleware.bench_ros2 import run_ros2_bench  # needs the [ros2] extra
+
+    return _print(asyncio.run(run_ros2_bench(domain=args.domain, rounds=args.rounds)))
 
 
 def _llm(args: argparse.Namespace) -> int:

@@ -1,8 +1,10 @@
 """rclpy in its own thread, bridged into asyncio in one place.
 
 `RosBridge` owns one rclpy `Context` (initialised for the adapter's domain, never the global
-one, so several adapters can live in one process), one node, and a `MultiThreadedExecutor`
-spinning in a daemon thread. Everything the executor thread hands to the event loop goes
+one, so several adapters can live in one process), one node, and an executor spinning in a
+daemon thread. The executor is single-threaded: every callback here is short (convert a
+message, hand it to the loop) and never blocks, and a thread pool would add a hop to each
+response (measured: docs/performance.md). Everything the executor thread hands to the event loop goes
 through `post` (``loop.call_soon_threadsafe``); `wait` turns an rclpy future into an awaitable.
 """
 
@@ -25,13 +27,12 @@ from robovoice.middleware.ros2_config import Ros2Settings, fastdds_profile
 import rclpy  # isort: skip  # after the guarded import in ros2.py
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.context import Context
-from rclpy.executors import MultiThreadedExecutor
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.task import Future
 
 log = logging.getLogger(__name__)
 
-EXECUTOR_THREADS = 4
 _ENV_LOCK = threading.Lock()
 _names = itertools.count(1)
 
@@ -80,7 +81,7 @@ class RosBridge:
             self.context.try_shutdown()
             raise MiddlewareError(f"{settings.uri}: cannot create the ROS 2 node: {exc}") from exc
         self.group = ReentrantCallbackGroup()
-        self._executor = MultiThreadedExecutor(num_threads=EXECUTOR_THREADS, context=self.context)
+        self._executor = SingleThreadedExecutor(context=self.context)
         self._executor.add_node(self.node)
         self._thread = threading.Thread(target=self._spin, name="robovoice-rclpy", daemon=True)
         self._thread.start()
