@@ -12,6 +12,7 @@ import re
 import shutil
 import wave
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import pytest
@@ -19,19 +20,27 @@ import pytest
 from robovoice.console.voice import VoiceBridge
 from robovoice.llm.fake_server import CallbackReply, ScriptedCall, TextReply, ToolCallReply
 
+from ..installed import missing, require
 from .console_testkit import running_console
 from .test_console_api import GO_TO_KITCHEN
 
-playwright_api = pytest.importorskip("playwright.async_api", reason="pip install 'robovoice[console]'")
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-pytestmark = [
-    pytest.mark.skipif(not Path(CHROMIUM).exists(), reason="Debian's chromium is not installed (scripts/setup.sh)"),
-    pytest.mark.timeout(180),  # the spoken test loads the real voice models (~5 s quiet, 15 s on a busy box)
-]
+pytestmark = pytest.mark.timeout(180)  # the spoken test loads the real voice models (~5 s quiet, 15 s busy)
 CLIP = Path(__file__).parents[1] / "data" / "audio" / "wake_piper_kitchen_pink20.wav"  # Hey Jarvis, kitchen
 STEP_MS = 60_000
 FLAGS = ["--no-sandbox", "--use-fake-ui-for-media-stream", "--use-fake-device-for-media-stream",
          "--autoplay-policy=no-user-gesture-required"]
+
+
+@pytest.fixture
+def playwright_api() -> ModuleType:
+    """Playwright for Python and Debian's chromium (a missing one fails the test, naming the step)."""
+    require(Path(CHROMIUM).exists(), "chromium", "Debian package chromium")
+    try:
+        import playwright.async_api as api
+    except ImportError:
+        missing("playwright", "pip install 'robovoice[console]'")
+    return api
 
 
 def _route(request: Any) -> Any:
@@ -55,7 +64,7 @@ def _padded(clip: Path, out: Path, silence_s: float = 50.0) -> Path:
     return out
 
 
-async def test_a_typed_request_shows_the_call_and_the_robot_in_the_kitchen() -> None:
+async def test_a_typed_request_shows_the_call_and_the_robot_in_the_kitchen(playwright_api: ModuleType) -> None:
     async with running_console(GO_TO_KITCHEN) as run, playwright_api.async_playwright() as pw:
         browser = await pw.chromium.launch(executable_path=CHROMIUM, args=["--no-sandbox"])
         try:
@@ -82,7 +91,8 @@ async def test_a_typed_request_shows_the_call_and_the_robot_in_the_kitchen() -> 
             await browser.close()
 
 
-async def test_a_spoken_command_through_the_fake_microphone_drives_the_robot(tmp_path: Path) -> None:
+async def test_a_spoken_command_through_the_fake_microphone_drives_the_robot(
+        playwright_api: ModuleType, tmp_path: Path) -> None:
     from robovoice.voice.models import load_voice_models
 
     wav = _padded(CLIP, tmp_path / "hey-jarvis-kitchen.wav")
