@@ -109,3 +109,18 @@ def test_url_options_need_a_url_backend() -> None:
         backend_from_args(_args("--llm", "http://edge:8000/v1?x=1#m"))
     with pytest.raises(ConfigError, match="port must be"):
         backend_from_args(_args("--llm", "http://edge:0/v1#m"))
+    for spec in ("foo", "local:", "ftp://edge/v1#m"):
+        with pytest.raises(ConfigError, match="accepted forms: 'local'"):
+            backend_from_args(_args("--llm", spec))
+    with pytest.raises(ConfigError) as info:
+        backend_from_args(_args("--llm", "http://user:key@edge/v1#m"))
+    assert str(info.value).startswith("--llm http://user:key@edge/v1#m: url: no user name or password in the URL")
+    assert "--api-key-env" in str(info.value)
+
+
+def test_the_command_line_makes_the_same_backend_configs(tmp_path: Path) -> None:
+    chain = backend_from_args(_args("--llm", "http://edge:8000/v1#omni", "--llm", f"local:{tmp_path}/x.gguf",
+                                    "--audio-input"))
+    edge, local = chain.backends
+    assert isinstance(edge, OpenAICompatBackend) and edge.model == "omni" and edge.accepts_audio
+    assert not local.accepts_audio and local.name == "local"

@@ -129,9 +129,10 @@ class BackendConfig(_Frozen):
         if value is not None:
             try:
                 check_http_url(value, "url", example="http://edge-server:8000/v1",
-                               secret_fix="give the API key with api_key_env or api_key_file")
+                               secret_fix="give the API key with api_key_env or api_key_file "
+                                          "(--api-key-env, --api-key-file)")
             except ConfigError as exc:
-                raise ValueError(str(exc)) from None
+                raise ValueError(str(exc).removeprefix("url: ")) from None
         return value
 
     @model_validator(mode="after")

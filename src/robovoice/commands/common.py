@@ -15,8 +15,9 @@ import dataclasses
 import logging
 import math
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from pathlib import Path
+from urllib.parse import urlsplit
 
 from pydantic import ValidationError
 
@@ -30,11 +31,11 @@ from robovoice.address import (
     with_sim_speed,
 )
 from robovoice.assistant.prompt import SYSTEM_PROMPT
-from robovoice.config import Config, RobotConfig, load_config, validation_message
+from robovoice.config import BackendConfig, Config, LLMConfig, RobotConfig, load_config, validation_message
 from robovoice.errors import ConfigError
 from robovoice.llm.base import Deadlines, LLMBackend, ToolSpec
 from robovoice.llm.failover import FailoverBackend
-from robovoice.llm.registry import BackendSpec, api_key_from, chain_from_specs
+from robovoice.llm.registry import ACCEPTED_FORMS, BackendSpec, api_key_from, chain_from_specs
 
 log = logging.getLogger(__name__)
 
@@ -193,37 +194,52 @@ def _deadlines(connect_s: float | None, first_token_s: float | None) -> Deadline
                                first_token_s=first_token_s or base.first_token_s)
 
 
+def llm_config_from_args(args: argparse.Namespace, config: Config) -> LLMConfig:
+    """The backends: from --llm (in order, with --model, --api-key-* and --audio-input for the
+    URL ones), else the config file's ``[[llm.backends]]``, else the local model. The command
+    line makes the same `BackendConfig`s a config file does, checked the same way."""
+    if not args.llm:
+        return config.llm if config.llm.backends else LLMConfig(backends=(BackendConfig(local=True),))
+    url_options = {"model": args.model, "api_key_env": args.api_key_env, "api_key_file": args.api_key_file,
+                   "accepts_audio": args.audio_input}
+    backends: list[BackendConfig] = []
+    for spec in (text.strip() for text in args.llm):
+        if spec == "local" or spec.startswith("local:"):
+            path = spec.removeprefix("local").removeprefix(":").strip()
+            if spec.startswith("local:") and not path:
+                raise ConfigError(f"--llm {spec!r}: accepted forms: {'; '.join(ACCEPTED_FORMS)}")
+            fields: dict[str, object] = {"local": True, "model_path": Path(path).expanduser() if path else None}
+        elif urlsplit(spec).scheme in ("http", "https"):
+            fields = {"url": spec, **url_options}
+        else:
+            raise ConfigError(f"--llm {spec!r}: accepted forms: {'; '.join(ACCEPTED_FORMS)}")
+        try:
+            backends.append(BackendConfig.model_validate(fields))
+        except ValidationError as exc:
+            raise ConfigError(validation_message(exc, f"--llm {spec}")) from None
+    if all(b.local for b in backends):
+        misplaced = [f"--{name.replace('_', '-')}".replace("accepts-audio", "audio-input")
+                     for name, value in url_options.items() if value]
+        if misplaced:
+            raise ConfigError(f"{', '.join(misplaced)}: for URL backends (--llm http://HOST:PORT/v1) only")
+    return LLMConfig(backends=tuple(backends))
+
+
+def backend_spec(backend: BackendConfig, env: Mapping[str, str]) -> BackendSpec:
+    """What one configured backend becomes at run time (its API key read now)."""
+    if backend.local:
+        return BackendSpec(f"local:{backend.model_path}" if backend.model_path else "local")
+    assert backend.url is not None
+    return BackendSpec(backend.url, model=backend.model, accepts_audio=backend.accepts_audio,
+                       api_key=api_key_from(env, env_var=backend.api_key_env, key_file=backend.api_key_file),
+                       extra_body=backend.extra_body, deadlines=_deadlines(backend.connect_s, backend.first_token_s))
+
+
 def backend_from_args(args: argparse.Namespace, config: Config | None = None) -> FailoverBackend:
     """The failover chain from --llm (in order), else the config file, else the local model."""
-    config = config or config_from_args(args)
+    llm = llm_config_from_args(args, config or config_from_args(args))
     env = os.environ  # API keys are named on the command line or in the config, read from here
-    if args.llm:
-        urls = [spec for spec in args.llm if not spec.strip().startswith("local")]
-        if not urls:
-            misplaced = [flag for flag, value in (("--model", args.model), ("--api-key-env", args.api_key_env),
-                                                  ("--api-key-file", args.api_key_file),
-                                                  ("--audio-input", args.audio_input)) if value]
-            if misplaced:
-                raise ConfigError(f"{', '.join(misplaced)}: for URL backends (--llm http://HOST:PORT/v1) only")
-        key = api_key_from(env, env_var=args.api_key_env, key_file=args.api_key_file)
-        specs = [
-            BackendSpec(spec, model=args.model if spec in urls else None,
-                        api_key=key if spec in urls else None,
-                        accepts_audio=args.audio_input and spec in urls)
-            for spec in args.llm
-        ]
-    elif config.llm.backends:
-        specs = []
-        for b in config.llm.backends:
-            if b.local:
-                specs.append(BackendSpec(f"local:{b.model_path}" if b.model_path else "local"))
-            else:
-                assert b.url is not None
-                specs.append(BackendSpec(b.url, model=b.model, accepts_audio=b.accepts_audio,
-                                         api_key=api_key_from(env, env_var=b.api_key_env, key_file=b.api_key_file),
-                                         extra_body=b.extra_body, deadlines=_deadlines(b.connect_s, b.first_token_s)))
-    else:
-        specs = [BackendSpec("local")]
+    specs = [backend_spec(b, env) for b in llm.backends]
     try:
         return chain_from_specs(specs)
     except ConfigError:
