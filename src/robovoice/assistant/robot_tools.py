@@ -22,6 +22,7 @@ from mcp.shared.dispatcher import ProgressFnT
 from pydantic import ValidationError
 
 from robovoice.llm.base import ToolSpec
+from robovoice.manifest.model import FOR_MODEL_META_KEY
 from robovoice.manifest.voice import META_KEY, VoiceDecl
 
 log = logging.getLogger(__name__)
@@ -118,8 +119,9 @@ class RobotTools:
         """The current tool list (fetched again after a list change)."""
         if self._stale:
             listing = await self.client.list_tools(cache_mode="refresh")
-            self._specs = [
+            self._specs = [  # tools marked for people and programs only (a map) are not the model's
                 ToolSpec(tool.name, tool.description or tool.name, tool.input_schema) for tool in listing.tools
+                if (tool.meta or {}).get(FOR_MODEL_META_KEY) is not False
             ]
             sections = {tool.name: voice_section(tool.name, tool.meta) for tool in listing.tools}
             self._voice = {name: section for name, section in sections.items() if section is not None}

@@ -19,6 +19,11 @@ TOOL_NAME_PATTERN = r"^[A-Za-z][A-Za-z0-9_\-]{0,63}$"
 
 EMPTY_OBJECT_SCHEMA: dict[str, Any] = {"type": "object", "properties": {}, "additionalProperties": False}
 
+# A tool with ``"for_model": false`` is for people and programs (a console's map), not the model:
+# MCP lists it with ``_meta[FOR_MODEL_META_KEY] = false`` and the assistant leaves it out.
+FOR_MODEL_META_KEY = "robovoice/for_model"
+FOR_MODEL_DESCRIPTION = ("offered to the language model (default true); false: for people and programs only, "
+                         "e.g. the map a console draws; still an MCP tool, marked in its _meta")
 
 
 class _Strict(BaseModel):
@@ -68,6 +73,7 @@ class ToolDecl(_Strict):
         default=None, description="its role for the voice pipeline (stop, motion) and what the robot says "
         "when it starts, makes progress, succeeds or fails (docs/manifest.md)"
     )
+    for_model: bool = Field(default=True, description=FOR_MODEL_DESCRIPTION)
 
     @field_validator("voice")
     @classmethod
@@ -92,6 +98,7 @@ class SnapshotDecl(_Strict):
     voice: VoiceDecl | None = Field(
         default=None, description="its role for the voice pipeline: pose (the value says whether the robot moves)"
     )
+    for_model: bool = Field(default=True, description=FOR_MODEL_DESCRIPTION)
 
     @field_validator("voice")
     @classmethod

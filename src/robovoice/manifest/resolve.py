@@ -53,6 +53,8 @@ class ToolEntry:
     """JSON path of the declaration in `source` (``$.tools[1]``), for error messages."""
     voice: VoiceDecl | None = None
     """The declaration's voice section (role, phrases), carried to clients in ``_meta``."""
+    for_model: bool = True
+    """False: left out of the model's tool list (``_meta``, `model.FOR_MODEL_META_KEY`)."""
 
     @property
     def fixed(self) -> dict[str, JSON]:
@@ -82,6 +84,7 @@ class SnapshotEntry:
     source: str
     path: str = ""
     voice: VoiceDecl | None = None
+    for_model: bool = True
 
     @property
     def input_schema(self) -> dict[str, Any]:
@@ -141,7 +144,8 @@ def resolve_node(info: NodeInfo, manifest: Manifest, source: str) -> NodeSurface
             errors.append(problem)
             continue
         snapshots.append(SnapshotEntry(
-            snap.name, info.name, snap.topic, snap.description, snap.max_age_s, source, json_path(loc), snap.voice
+            snap.name, info.name, snap.topic, snap.description, snap.max_age_s, source, json_path(loc), snap.voice,
+            snap.for_model,
         ))
     return NodeSurface(info.name, source, tuple(tools), tuple(snapshots), tuple(sort_errors(errors)))
 
@@ -199,6 +203,7 @@ def _tool_entry(node: str, rpc: RpcInfo, decl: ToolDecl, source: str, path: str)
         source=source,
         path=path,
         voice=decl.voice,
+        for_model=decl.for_model,
     )
 
 

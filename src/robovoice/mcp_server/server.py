@@ -37,6 +37,7 @@ from robovoice.manifest import (
     format_error,
     surface_for,
 )
+from robovoice.manifest.model import FOR_MODEL_META_KEY
 from robovoice.manifest.voice import META_KEY as VOICE_META_KEY
 from robovoice.mcp_server._groups import owned_tasks
 from robovoice.mcp_server.audit import AuditLog
@@ -75,6 +76,8 @@ def _tool(entry: CatalogEntry) -> types.Tool:
     in ``_meta`` under ``robovoice/voice``, so a remote assistant gets it from ``tools/list``."""
     annotations = entry.annotations.model_dump(exclude_none=True)
     meta: dict[str, Any] = {VOICE_META_KEY: entry.voice.meta()} if entry.voice is not None else {}
+    if not entry.for_model:  # for people and programs (a console's map), not the model
+        meta[FOR_MODEL_META_KEY] = False
     return types.Tool(
         name=entry.name,
         description=entry.description,
