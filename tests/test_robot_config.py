@@ -5,6 +5,7 @@ that build the same `RobotConfig`."""
 from __future__ import annotations
 
 import argparse
+import re
 from pathlib import Path
 
 import pytest
@@ -60,6 +61,7 @@ def test_bad_robot_sections_name_the_field_and_the_fix(tmp_path: Path, section: 
     ('local = true\naccepts_audio = true', "accepts_audio: for url backends only"),
     ('url = "http://edge/v1"\nmodel_path = "x.gguf"', "model_path is for `local = true` backends"),
     ('url = "http://edge/v1"\nconnect_s = -1', "connect_s: Input should be greater than 0"),
+    ('local = true\nmodel_path = "/no/such/model.gguf"', "model_path '/no/such/model.gguf' is not a file"),
 ])
 def test_bad_backends_name_the_field_and_the_fix(tmp_path: Path, backend: str, message: str) -> None:
     path = tmp_path / "robovoice.toml"
@@ -109,6 +111,8 @@ def test_url_options_need_a_url_backend() -> None:
         backend_from_args(_args("--llm", "http://edge:8000/v1?x=1#m"))
     with pytest.raises(ConfigError, match="port must be"):
         backend_from_args(_args("--llm", "http://edge:0/v1#m"))
+    with pytest.raises(ConfigError, match=re.escape("--llm local:/no/such.gguf: model_path '/no/such.gguf' is not")):
+        backend_from_args(_args("--llm", "local:/no/such.gguf"))
     for spec in ("foo", "local:", "ftp://edge/v1#m"):
         with pytest.raises(ConfigError, match="accepted forms: 'local'"):
             backend_from_args(_args("--llm", spec))
@@ -119,6 +123,7 @@ def test_url_options_need_a_url_backend() -> None:
 
 
 def test_the_command_line_makes_the_same_backend_configs(tmp_path: Path) -> None:
+    (tmp_path / "x.gguf").write_bytes(b"GGUF")
     chain = backend_from_args(_args("--llm", "http://edge:8000/v1#omni", "--llm", f"local:{tmp_path}/x.gguf",
                                     "--audio-input"))
     edge, local = chain.backends

@@ -149,6 +149,9 @@ class BackendConfig(_Frozen):
                 raise ValueError(f"{', '.join(misplaced)}: for url backends only; a local backend takes model_path")
         elif self.model_path is not None:
             raise ValueError("model_path is for `local = true` backends; a url backend names its `model`")
+        if self.model_path is not None and not self.model_path.expanduser().is_file():
+            raise ValueError(f"model_path {str(self.model_path)!r} is not a file; give the path of a GGUF model, "
+                             f"or leave it out for the embedded model")
         return self
 
 
