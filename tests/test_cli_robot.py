@@ -218,6 +218,7 @@ def test_config_file_names_the_robot(capsys: pytest.CaptureFixture[str], tmp_pat
     (["serve", "--robot", "http://127.0.0.1:8765/mcp"], "robovoice serve needs the robot's nodes in this process"),
     (["check-manifests", "somewhere", "--robot", "stdio:robovoice serve"], "checks against the nodes themselves"),
     (["sim", "--middleware", "memory://"], "no other process can reach"),
+    (["tools", "--robot", "http://127.0.0.1:1/mcp", "--wait", "2"], "--wait applies to nodes on a middleware URI"),
     (["serve", "--port", "9000"], "--port applies to --transport http only"),
     (["serve", "--host", "0.0.0.0", "--allow-host", "robot.local"], "--host, --allow-host apply to --transport http"),
     (["sim", "--middleware", "sim://"], "is not a middleware URI"),

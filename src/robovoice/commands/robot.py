@@ -149,6 +149,9 @@ def _audit_log(args: argparse.Namespace, target: RobotAddress) -> Path | None:
 
 def _wait_s(args: argparse.Namespace, target: RobotAddress) -> float:
     if args.wait is not None:
+        if not isinstance(target, LocalAddress):
+            raise ConfigError(f"--wait applies to nodes on a middleware URI; the MCP server at {target} has its "
+                              f"tools already")
         return float(args.wait)
     return DEFAULT_WAIT_S if isinstance(target, MiddlewareAddress) else 0.0
 
