@@ -67,7 +67,7 @@ def test_arguments_map_to_the_request() -> None:
     projector = _bindings()["projector"].tools["/projector/set_power"]
     assert projector.build_request({"on": True}).data is True
     fib = _bindings()["fibonacci"]
-    assert set(fib.tools) == {"/fibonacci", "/fibonacci#count_named"}  # one action, two argument maps
+    assert set(fib.tools) == {"/fibonacci", "/fibonacci#count_named", "/fibonacci#count_briefly"}  # 3 bindings
     assert fib.tools["/fibonacci#count_named"].build_request({"length": "long"}).order == 30
     with pytest.raises(InvalidArgumentsError, match="not one of the known names"):
         fib.tools["/fibonacci#count_named"].build_request({"length": "huge"})

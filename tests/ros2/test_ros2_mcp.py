@@ -18,8 +18,8 @@ from .ros2_testkit import BOUND_S, RosWorld, body, serve, wait_tools
 
 pytestmark = pytest.mark.integration
 
-ALL = {"set_projector_power", "count_fibonacci", "count_named", "get_battery_state", "get_camera_image",
-       "get_compressed_image", "echo_basic"}
+ALL = {"set_projector_power", "count_fibonacci", "count_named", "count_briefly", "get_battery_state",
+       "get_camera_image", "get_compressed_image", "echo_basic"}
 
 
 async def test_service_action_and_snapshots_through_mcp(ros: RosWorld) -> None:
@@ -75,7 +75,7 @@ async def test_named_choices_fixed_fields_and_refusals_before_sending(ros: RosWo
     robot = ros.start("fibonacci", "basic")
     await robot.ready()
     async with serve(ros.uri()) as served:
-        await wait_tools(served, {"count_fibonacci", "count_named", "echo_basic"})
+        await wait_tools(served, {"count_fibonacci", "count_named", "count_briefly", "echo_basic"})
         named = await served.client.call_tool("count_named", {"length": "short"})
         assert not named.is_error and body(named)["sequence"] == [0, 1, 1, 2]
         assert await robot.counted("goal /fibonacci order=3", 1) == 1
@@ -101,7 +101,7 @@ async def test_rejected_aborted_and_cancelled_goals(ros: RosWorld) -> None:
     robot = ros.start("fibonacci")
     await robot.ready()
     async with serve(ros.uri()) as served:
-        await wait_tools(served, {"count_fibonacci", "count_named"})
+        await wait_tools(served, {"count_fibonacci", "count_named", "count_briefly"})
         rejected = await served.client.call_tool("count_fibonacci", {"order": 41})
         assert rejected.is_error and body(rejected)["error"] == "goal_rejected"
         aborted = await served.client.call_tool("count_named", {"length": "unlucky"})
@@ -122,6 +122,11 @@ async def test_rejected_aborted_and_cancelled_goals(ros: RosWorld) -> None:
         await robot.ready("canceled /fibonacci")  # the goal on the robot was cancelled
         again = await served.client.call_tool("count_named", {"length": "short"})
         assert not again.is_error
+
+        cancels = robot.count("canceled /fibonacci")
+        brief = await served.client.call_tool("count_briefly", {})  # times out after 0.5 s
+        assert brief.is_error and body(brief)["error"] == "timeout"
+        assert await robot.counted("canceled /fibonacci", cancels + 1) == cancels + 1  # and was cancelled
 
 
 async def test_fifty_concurrent_calls_are_all_answered(ros: RosWorld) -> None:
@@ -160,7 +165,7 @@ async def test_action_server_killed_mid_goal_is_a_bounded_node_unavailable(ros: 
     robot = ros.start("fibonacci")
     await robot.ready()
     async with serve(ros.uri()) as served:
-        await wait_tools(served, {"count_fibonacci", "count_named"})
+        await wait_tools(served, {"count_fibonacci", "count_named", "count_briefly"})
         started = asyncio.Event()
 
         async def on_progress(progress: float, total: float | None, message: str | None) -> None:

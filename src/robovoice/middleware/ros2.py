@@ -6,7 +6,7 @@ topics. Each manifest is one robovoice *node*; it is present while every service
 server and topic publisher it names is in the ROS graph (`ros2_presence`), and it announces
 itself with the manifest the MCP server uses, its input schemas derived from the ROS types
 (`ros2_bindings`). Module map: `ros2_config` (URIs), `ros2_types` (JSON ⇄ messages, schemas),
-`ros2_bindings` (manifests → bindings), `ros2_bridge` (the rclpy thread → event loop),
+`ros2_bindings` (manifests → bindings), `ros2_schema` (input schemas), `ros2_bridge` (the rclpy thread → event loop),
 `ros2_presence` (the graph), `ros2_calls` (services and actions), this module.
 """
 

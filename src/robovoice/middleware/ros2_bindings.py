@@ -9,7 +9,6 @@ at start, and the tests and ``check`` tooling can call it on any folder. Each pr
 
 from __future__ import annotations
 
-import contextlib
 import copy
 import string
 from collections.abc import Mapping
@@ -17,34 +16,21 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from robovoice.errors import InvalidArgumentsError, ManifestError
-from robovoice.manifest.errors import ManifestErrors, did_you_mean, json_path
+from robovoice.manifest.errors import ManifestErrors, json_path
 from robovoice.manifest.loader import LoadedManifest
 from robovoice.manifest.model import SnapshotDecl, ToolDecl
-from robovoice.manifest.ros2_model import Ros2Argument, Ros2ToolBinding
 from robovoice.middleware.base import JSON, NodeInfo, RpcInfo, RpcKind
+from robovoice.middleware.ros2_schema import ArgumentMap, check_fixed, check_success, field_problem, tool_schema
 from robovoice.middleware.ros2_types import (
     TypeNotFoundError,
-    convert,
     field_json,
-    field_names,
     field_type,
     import_type,
-    message_schema,
     to_json,
     to_message,
-    type_schema,
 )
 
 Loc = tuple[str | int, ...]
-
-
-@dataclass(frozen=True, slots=True)
-class ArgumentMap:
-    """One LLM-facing argument → the request/goal field it sets."""
-
-    name: str
-    field: str | None
-    choices: Mapping[str, JSON] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -241,122 +227,14 @@ def _compile_tool(decl: ToolDecl, loc: Loc, source: str) -> ToolBinding:
     response = interface.Result if kind == "action" else interface.Response
     feedback = interface.Feedback if kind == "action" else None
     problems: list[ManifestError] = []
-    fixed = _check_fixed(binding, request, (*loc, "ros2"), source, problems)
-    schema, arguments = _schema(binding, request, (*loc, "ros2"), source, problems)
+    fixed = check_fixed(binding, request, (*loc, "ros2"), source, problems)
+    schema, arguments = tool_schema(binding, request, (*loc, "ros2"), source, problems)
     if binding.success_field is not None:
-        _check_success(binding.success_field, response, (*loc, "ros2", "success_field"), source, problems)
+        check_success(binding.success_field, response, (*loc, "ros2", "success_field"), source, problems)
     if problems:
         raise ManifestErrors(problems)
     return ToolBinding(decl.rpc, decl.rpc, binding.type, kind, interface, request, response, feedback,
                        schema, arguments, fixed, binding.success_field, binding.feedback_message)
-
-
-def _field(request: Any, path: str, loc: Loc, source: str, problems: list[ManifestError]) -> Any | None:
-    try:
-        return field_type(request, path)
-    except KeyError as exc:
-        missing = str(exc.args[0])
-        head = path.rsplit(".", 1)[0] if "." in path else ""
-        try:
-            owner = field_type(request, head) if head else None
-            names = field_names(_class_of(owner)) if owner is not None else field_names(request)
-        except (KeyError, TypeError):
-            names = []
-        problems.append(ManifestError(
-            source, json_path(loc), f"{_type_label(request)} has no field {path!r} ({missing!r} is unknown)",
-            did_you_mean(missing, names, what="fields"),
-        ))
-        return None
-
-
-def _class_of(t: Any) -> Any:
-    import importlib
-
-    return getattr(importlib.import_module(".".join(t.namespaces)), t.name)
-
-
-def _type_label(cls: Any) -> str:
-    module = cls.__module__.split(".")
-    return f"{module[0]}/{module[1]}/{cls.__name__}"
-
-
-def _check_fixed(binding: Ros2ToolBinding, request: Any, loc: Loc, source: str,
-                 problems: list[ManifestError]) -> dict[str, JSON]:
-    for path, value in binding.fixed.items():
-        t = _field(request, path, (*loc, "fixed", path), source, problems)
-        if t is not None:
-            try:
-                convert(t, value, path)
-            except ValueError as exc:
-                problems.append(ManifestError(source, json_path((*loc, "fixed", path)), str(exc),
-                                              "give a value of the field's type and range"))
-    return dict(binding.fixed)
-
-
-def _schema(binding: Ros2ToolBinding, request: Any, loc: Loc, source: str,
-            problems: list[ManifestError]) -> tuple[dict[str, Any], tuple[ArgumentMap, ...]]:
-    if binding.arguments is None:
-        schema = message_schema(request)
-        for index, path in enumerate(binding.hide):
-            if _field(request, path, (*loc, "hide", index), source, problems) is not None:
-                _drop(schema, path)
-        for path in binding.fixed:
-            with contextlib.suppress(KeyError):  # a field the type lacks: reported by _check_fixed
-                _drop(schema, path)
-        for path, text in binding.descriptions.items():
-            if _field(request, path, (*loc, "descriptions", path), source, problems) is not None:
-                _describe(schema, path, text)
-        return schema, tuple(ArgumentMap(name, name) for name in schema["properties"])
-    props: dict[str, Any] = {}
-    maps: list[ArgumentMap] = []
-    for name, arg in binding.arguments.items():
-        arg_loc = (*loc, "arguments", name)
-        prop = _argument_schema(arg, request, arg_loc, source, problems)
-        if prop is not None:
-            props[name] = prop
-            maps.append(ArgumentMap(name, arg.field, arg.choices))
-    required = [a.name for a in maps]  # named on purpose: the model gives them (or `defaults` does)
-    schema = {"type": "object", "properties": props, "additionalProperties": False}
-    if required:
-        schema["required"] = required
-    return schema, tuple(maps)
-
-
-def _argument_schema(arg: Ros2Argument, request: Any, loc: Loc, source: str,
-                     problems: list[ManifestError]) -> dict[str, Any] | None:
-    t = None
-    if arg.field is not None:
-        t = _field(request, arg.field, (*loc, "field"), source, problems)
-        if t is None:
-            return None
-    if arg.choices is None:
-        if t is None:
-            problems.append(ManifestError(source, json_path(loc), "an argument needs a `field` or `choices`",
-                                          'add "field": "<request field>" or a "choices" table'))
-            return None
-        prop = type_schema(t)
-    else:
-        for choice, value in arg.choices.items():
-            try:
-                if t is not None:
-                    convert(t, value, arg.field or choice)
-                else:
-                    to_message(request, value)
-            except ValueError as exc:
-                problems.append(ManifestError(source, json_path((*loc, "choices", choice)), str(exc),
-                                              "give a value of the field's type (an object of fields without "
-                                              "`field`)"))
-        prop = {"type": "string", "enum": list(arg.choices)}
-    if arg.description is not None:
-        prop["description"] = arg.description
-    return prop
-
-
-def _check_success(path: str, response: Any, loc: Loc, source: str, problems: list[ManifestError]) -> None:
-    t = _field(response, path, loc, source, problems)
-    if t is not None and getattr(t, "typename", None) != "boolean":
-        problems.append(ManifestError(source, json_path(loc), f"{path!r} is not a boolean field",
-                                      "name a boolean field of the response/result, e.g. success"))
 
 
 def _compile_snapshot(snap: SnapshotDecl, loc: Loc, source: str) -> SnapshotBinding:
@@ -373,7 +251,7 @@ def _compile_snapshot(snap: SnapshotDecl, loc: Loc, source: str) -> SnapshotBind
     message = _import(binding.type, (*loc, "ros2", "type"), source)
     problems: list[ManifestError] = []
     for index, path in enumerate(binding.fields or ()):
-        _field(message, path, (*loc, "ros2", "fields", index), source, problems)
+        field_problem(message, path, (*loc, "ros2", "fields", index), source, problems)
     if problems:
         raise ManifestErrors(problems)
     return SnapshotBinding(snap.topic, binding.type, message, binding.fields)
@@ -400,22 +278,6 @@ def _merge(target: dict[str, Any], value: Any) -> None:
             _merge(target[key], item)
         else:
             target[key] = copy.deepcopy(item)
-
-
-def _drop(schema: dict[str, Any], path: str) -> None:
-    parts = path.split(".")
-    for part in parts[:-1]:
-        schema = schema["properties"][part]
-    schema["properties"].pop(parts[-1], None)
-
-
-def _describe(schema: dict[str, Any], path: str, text: str) -> None:
-    parts = path.split(".")
-    for part in parts[:-1]:
-        schema = schema["properties"][part]
-    prop = schema["properties"].get(parts[-1])
-    if isinstance(prop, dict):
-        prop["description"] = text
 
 
 __all__ = ["ArgumentMap", "NodeBinding", "SnapshotBinding", "ToolBinding", "compile_manifest"]

@@ -128,7 +128,10 @@ class Ros2Calls:
         result_waiter = self._bridge.wait(handle.get_result_async())
         try:
             outcome = await self._await(result_waiter, self._presence.action_up, node, binding, deadline, "result")
-        except BaseException:
+        except NodeUnavailableError:  # the server is gone: nobody to cancel the goal with
+            result_waiter.cancel()
+            raise
+        except BaseException:  # timed out, or the caller cancelled: cancel the goal on the robot
             result_waiter.cancel()
             await self._cancel(handle)
             raise
