@@ -8,6 +8,7 @@ import json
 import sys
 import time
 from pathlib import Path
+from typing import TextIO
 
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.events import (
@@ -59,7 +60,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 class ChatPrinter:
     """Prints a turn as it happens; progress lines at most once a second per tool."""
 
-    def __init__(self, out=sys.stdout) -> None:  # type: ignore[no-untyped-def]  # any text stream
+    def __init__(self, out: TextIO = sys.stdout) -> None:
         self.out = out
         self._last_progress: dict[str, float] = {}
 
