@@ -16,7 +16,7 @@ from dataclasses import asdict, is_dataclass
 from pathlib import Path
 from typing import Any
 
-from robovoice.commands.common import existing_file, positive_int
+from robovoice.commands.common import existing_file, positive_float, positive_int
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -58,6 +58,11 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     voice.add_argument("which", nargs="?", choices=["local", "overhead"], default="local")
     voice.add_argument("--turns", type=positive_int, help="turns to measure (default 8 local, 30 overhead)")
     voice.set_defaults(run=_voice)
+
+    console = sub.add_parser("console", help="the console page open for minutes: page and server memory, "
+                                             "responsiveness (headless chromium, the sim, a scripted model)")
+    console.add_argument("--minutes", type=positive_float, default=10.0, help="how long (default 10)")
+    console.set_defaults(run=_console)
 
 
 def _machine() -> dict[str, Any]:
@@ -129,3 +134,9 @@ def _voice(args: argparse.Namespace) -> int:
     if args.which == "overhead":
         return _print(asyncio.run(bench_overhead(args.turns or 30)))
     return _print(asyncio.run(bench_local(args.turns or 8)))
+
+
+def _console(args: argparse.Namespace) -> int:
+    from robovoice.console.bench import bench_console
+
+    return _print(asyncio.run(bench_console(args.minutes)))

@@ -56,6 +56,7 @@ function drawRobot(state) {
   const pose = state.pose;
   if (!pose || !$("#robot")) return;
   robot.pose = pose;
+  robot.stateStamp = (state.stamps || {}).pose;
   const bot = $("#robot");
   bot.setAttribute("transform", `translate(${pose.x} ${-pose.y}) rotate(${-pose.heading_deg})`);
   bot.dataset.x = pose.x; bot.dataset.y = pose.y; bot.dataset.place = pose.nearest_place || "";
