@@ -48,6 +48,8 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
                       help="where the answers (turn-NN.wav) and the whole conversation go (default robovoice-demo)")
     demo.add_argument("--sim-speed", type=positive_float, default=2.0, metavar="X",
                       help="simulated time speed-up, so drives take seconds (default 2)")
+    demo.add_argument("--console", nargs="?", type=int, const=8780, metavar="PORT",
+                      help="watch it in the robot console: serve the page on 127.0.0.1:PORT (default 8780)")
     add_llm_args(demo)
     demo.set_defaults(run=run_demo_command)
 
@@ -175,8 +177,11 @@ async def _demo(args: argparse.Namespace) -> int:
                 raise ConfigError("the demo needs the embedded sim robot")
             await warm_up(backend, await link.tools.specs())
             printer.line(f"ready: model {backend.name}, sim robot at {args.sim_speed:g}x; the conversation starts")
-            report = await run_demo(models, backend, link.tools, link.sim, output_dir=args.output_dir,
-                                    observer=printer, on_step=on_step, config=config.voice)
+            from robovoice.console.beside import console_beside
+
+            async with console_beside(link.tools, backend, port=args.console, say=printer.line) as watched:
+                report = await run_demo(models, backend, link.tools, link.sim, output_dir=args.output_dir,
+                                        observer=watched(printer), on_step=on_step, config=config.voice)
     finally:
         await backend.aclose()
 

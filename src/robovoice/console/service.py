@@ -123,6 +123,11 @@ class Console:
         pipeline = self.voice.pipeline if self.voice is not None else None
         return pipeline.assistant if pipeline is not None else self._assistant
 
+    def observe(self, event: object, source: str = "voice") -> None:
+        """Show a voice pipeline event that another command's pipeline produced (`beside`)."""
+        self.hub.voice_event(event)
+        self.audit.observe(event, source)
+
     def _on_state(self, state: dict[str, Any]) -> None:
         self.hub.broadcast({"type": "state", "state": state})
 
