@@ -17,7 +17,7 @@ import logging
 import os
 import tempfile
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -37,14 +37,27 @@ _ENV_LOCK = threading.Lock()
 _names = itertools.count(1)
 
 
-def prepare_environment(settings: Ros2Settings) -> None:
-    """Set the variables rcl and Fast DDS read when a context and its participant start.
+@contextlib.contextmanager
+def ros_environment(settings: Ros2Settings) -> Iterator[None]:
+    """The variables rcl and Fast DDS read while a context and its participant start, set for
+    that moment only (then restored: the process's environment is not ours to keep).
 
-    The profile file with a short lease is set only when the process has none: a user's own
+    The short-lease profile file is set only when the process has none: a user's own
     ``FASTDDS_DEFAULT_PROFILES_FILE`` wins."""
-    os.environ.update(settings.environment())
+    wanted = settings.environment()
     if settings.lease_s > 0 and "FASTDDS_DEFAULT_PROFILES_FILE" not in os.environ:
-        os.environ["FASTDDS_DEFAULT_PROFILES_FILE"] = str(write_profile(settings.lease_s))
+        wanted["FASTDDS_DEFAULT_PROFILES_FILE"] = str(write_profile(settings.lease_s))
+    with _ENV_LOCK:
+        saved = {name: os.environ.get(name) for name in wanted}
+        os.environ.update(wanted)
+        try:
+            yield
+        finally:
+            for name, value in saved.items():
+                if value is None:
+                    os.environ.pop(name, None)
+                else:
+                    os.environ[name] = value
 
 
 def write_profile(lease_s: float) -> Path:
@@ -65,21 +78,20 @@ class RosBridge:
         self._settings = settings
         self._loop = loop
         self._closed = False
-        with _ENV_LOCK:  # rcl reads the environment during init
-            prepare_environment(settings)
+        with ros_environment(settings):  # read by rcl and Fast DDS during init and node creation
             self.context = Context()
             try:
                 rclpy.init(context=self.context, domain_id=settings.domain_id)
             except Exception as exc:
                 raise MiddlewareError(f"{settings.uri}: cannot start ROS 2: {exc}") from exc
-        try:
-            self.node: Node = rclpy.create_node(
-                f"robovoice_{os.getpid()}_{next(_names)}", context=self.context,
-                enable_rosout=False, start_parameter_services=False,
-            )
-        except Exception as exc:
-            self.context.try_shutdown()
-            raise MiddlewareError(f"{settings.uri}: cannot create the ROS 2 node: {exc}") from exc
+            try:
+                self.node: Node = rclpy.create_node(
+                    f"robovoice_{os.getpid()}_{next(_names)}", context=self.context,
+                    enable_rosout=False, start_parameter_services=False,
+                )
+            except Exception as exc:
+                self.context.try_shutdown()
+                raise MiddlewareError(f"{settings.uri}: cannot create the ROS 2 node: {exc}") from exc
         self.group = ReentrantCallbackGroup()
         self._executor = SingleThreadedExecutor(context=self.context)
         self._executor.add_node(self.node)
