@@ -3,9 +3,12 @@ through MCP tools marked ``"for_model": false``; the assistant still sees exactl
 
 from __future__ import annotations
 
+import sys
+
 import httpx
 
 from robovoice.assistant.connect import connect_robot
+from robovoice.config import RobotConfig
 from robovoice.manifest.model import FOR_MODEL_META_KEY
 
 from .console_testkit import BOUND_S, SIM, running_console
@@ -44,3 +47,17 @@ async def test_the_console_draws_from_the_robots_own_tools() -> None:
         assert robot["call"]["in_call"] is False and robot["projector"] == {"on": False}
         assert robot["battery"]["percent"] > 0 and robot["camera"]["mime"] == "image/jpeg"
         assert not robot["errors"]
+
+
+async def test_a_robot_behind_another_processes_mcp_server_is_shown_the_same() -> None:
+    """The console knows no sim: over stdio (an MCP server in a child process) the map, the pose
+    and the tools come the same way."""
+    robot = RobotConfig(address=f"stdio:{sys.executable} -m robovoice.cli serve --robot sim://?speed=20")
+    async with running_console(robot=robot) as run, httpx.AsyncClient(base_url=run.base, timeout=BOUND_S) as http:
+        await run.console.watcher.refresh_tools()
+        for item in run.console.watcher._watched:
+            await run.console.watcher.read(item)
+        state = (await http.get("/api/state")).json()["robot"]
+        assert state["pose"]["nearest_place"] == "charging dock" and len(state["map"]["places"]) == 8
+        called = (await http.post("/api/call", json={"name": "navigate_to", "arguments": {"target": "hallway"}})).json()
+        assert not called["is_error"] and called["structured"]["arrived"] == "hallway"
