@@ -31,6 +31,7 @@ from robovoice.urls import check_port, positive_number, split_host_port
     ("zenoh://tcp/127.0.0.1:7447", MiddlewareAddress("zenoh://tcp/127.0.0.1:7447")),
     ("http://127.0.0.1:8765/mcp", HttpAddress("http://127.0.0.1:8765/mcp")),
     ("https://robot.local/mcp", HttpAddress("https://robot.local/mcp")),
+    ("http://127.0.0.1:9000/", HttpAddress("http://127.0.0.1:9000/")),  # a server at the root, said explicitly
     ("http://[::1]:8765/mcp", HttpAddress("http://[::1]:8765/mcp")),
     ("stdio:robovoice serve --robot sim", StdioAddress(("robovoice", "serve", "--robot", "sim"))),
     ("stdio:'my server' --flag", StdioAddress(("my server", "--flag"))),
@@ -64,7 +65,6 @@ def test_addresses_parse_to_one_value_each(text: str, expected: object) -> None:
     ("zenoh://tls/127.0.0.1:7447", "cannot be the rendezvous"),
     ("ros2://?domain_id=999", "domain_id must be 0..232"),  # checked as an address, before ROS 2 is loaded
     ("http://127.0.0.1:8765", "names no MCP endpoint path"),
-    ("http://127.0.0.1:8765/", "http://127.0.0.1:8765/mcp"),
     ("http://127.0.0.1:0/mcp", "port must be a number from 1 to 65535"),
     ("http://127.0.0.1:70000/mcp", "port must be"),
     ("http://:8765/mcp", "the host is empty"),

@@ -124,9 +124,9 @@ def _middleware(text: str) -> MiddlewareAddress:
 
 def _http(text: str) -> HttpAddress:
     parts = check_http_url(text, "robot address", example=HTTP_EXAMPLE, secret_fix=TOKEN_FIX)
-    if parts.path in ("", "/"):
+    if not parts.path:  # a server whose endpoint really is the root is written with its '/'
         raise ConfigError(f"robot address {text!r} names no MCP endpoint path; a robovoice server's is /mcp: "
-                          f"{parts.scheme}://{parts.netloc}/mcp")
+                          f"{parts.scheme}://{parts.netloc}/mcp (write {text}/ for a server at the root)")
     if parts.fragment:
         raise ConfigError(f"robot address {text!r}: unexpected '#{parts.fragment}'; write e.g. {HTTP_EXAMPLE}")
     return HttpAddress(text)
