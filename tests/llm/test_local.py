@@ -25,7 +25,8 @@ from robovoice.llm.base import (
     ToolCallRequested,
     ToolSpec,
 )
-from robovoice.llm.local import TOOL_BIAS, HeadDecision, LocalLlamaBackend
+from robovoice.llm.local import LocalLlamaBackend
+from robovoice.llm.local_head import TOOL_BIAS, HeadDecision
 
 pytestmark = [
     pytest.mark.integration,

@@ -9,12 +9,8 @@
   token by token as `TextDelta`; calls are generated whole, each argument
   object constrained by its JSON schema, and yielded as `ToolCallRequested`
   as soon as each is complete. A turn without tools is streamed plain ChatML.
-* The head decision right after the user's words can be tilted: ``tool_bias``
-  is added to the logits of the call head's first token (``functions`` and its
-  prefixes) at that one position, so the model asks the robot when it was
-  nearly as inclined to as to answer from memory. After a tool result (the
-  model has the data) the decision is left alone. `decide_head` reports the
-  untilted margin; docs/llm.md has the measurement behind the default.
+* The head decision right after the user's words can be tilted towards calling
+  a tool by ``tool_bias`` (`local_head`); `decide_head` reports the untilted margin.
 * Prefix reuse: llama.cpp keeps the key/value cache of the last evaluation and
   ``Llama.generate`` re-evaluates only what follows the longest common token
   prefix. `warm_up` evaluates the system prompt + tools once, so the first real
@@ -51,6 +47,7 @@ from robovoice.llm.base import (
     tool_call_from_raw,
 )
 from robovoice.llm.bridge import ThreadStream
+from robovoice.llm.local_head import TOOL_BIAS, HeadDecision, HeadTilt, bias_for, head_token_ids
 from robovoice.llm.model_store import INSTALL_HINT as MODEL_INSTALL_HINT
 from robovoice.llm.model_store import default_model_ready, resolve_model_path
 
@@ -59,10 +56,6 @@ log = logging.getLogger(__name__)
 INSTALL_HINT = "pip install 'robovoice[llm]'"
 # A CPU model needs longer to its first token than a server (prefill of a long history on 2 cores).
 LOCAL_DEADLINES = Deadlines(connect_s=0.0, first_token_s=30.0, idle_s=10.0, total_s=120.0)
-# The default `LocalLlamaBackend.tool_bias` in logit units. Measured on the text evaluation with the
-# assistant's prompt (docs/llm.md): questions about the robot's state sat at margins down to -0.57,
-# small talk at -2.09 and below; 1.3 is near the middle of that gap.
-TOOL_BIAS = 1.3
 
 
 def llama_cpp_available() -> bool:
@@ -95,35 +88,6 @@ class TurnStats:
     # The head decision of the turn: logit of the best call-head token minus that of the best
     # message-head token, before ``tool_bias`` (None when the turn offered no tools).
     head_margin: float | None = None
-
-
-@dataclass(frozen=True, slots=True)
-class HeadDecision:
-    """What the model chose at the head of its answer, and by how much (see `TurnStats.head_margin`)."""
-
-    head: fmt.Head
-    margin: float
-
-
-class _HeadTilt:
-    """A llama.cpp logits processor for the first token of the head: records the margin between
-    the call head and the message head, and adds ``bias`` to the call head's tokens. Later tokens
-    (the tool's name) are left alone, so the bias never favours one tool over another."""
-
-    def __init__(self, call_ids: list[int], message_ids: list[int], bias: float) -> None:
-        self.call_ids = call_ids
-        self.message_ids = message_ids
-        self.bias = bias
-        self.margin: float | None = None
-
-    def __call__(self, _input_ids: Any, scores: Any) -> Any:
-        if self.margin is not None:  # past the first token
-            return scores
-        self.margin = float(scores[self.call_ids].max() - scores[self.message_ids].max())
-        if self.bias:
-            scores = scores.copy()
-            scores[self.call_ids] += self.bias
-        return scores
 
 
 @dataclass(slots=True)
@@ -221,36 +185,12 @@ class LocalLlamaBackend:
                 )
         return self._grammars[schema]
 
-    def _head_token_ids(self, tools: Sequence[ToolSpec]) -> tuple[list[int], list[int]]:
-        """Token ids that can start a call head and the message head: every prefix of a head that
-        is a single token ("f", "func", "functions", …; "m", "mess", "message"), which is what the
-        head grammar lets through as the first token."""
-        key = tuple(t.name for t in tools)
-        if key not in self._head_ids:
-
-            def starts(heads: list[str]) -> list[int]:
-                ids: set[int] = set()
-                for head in heads:
-                    for end in range(1, len(head) + 1):
-                        piece = head[:end].encode("utf-8")
-                        tokens = self._llama.tokenize(piece, add_bos=False, special=False)
-                        if len(tokens) == 1 and self._llama.detokenize(tokens) == piece:
-                            ids.add(tokens[0])
-                return sorted(ids)
-
-            calls = starts([f"{fmt.FUNCTION_PREFIX}{t.name}:" for t in tools])
-            self._head_ids[key] = (calls, starts([fmt.MESSAGE_HEAD]))
-        return self._head_ids[key]
-
-    def _bias_for(self, messages: Sequence[ChatMessage]) -> float:
-        """``tool_bias`` for a step that answers the user's words; none after tool results. There,
-        measured, single requests that should now be answered reach margins of -1.4 while the
-        second calls of multi-step requests sit at -1.6 to -1.9: no bias would separate them."""
-        return self.tool_bias if messages and messages[-1].role == "user" else 0.0
-
     def _decide_head(self, turn: _Turn, prompt: str, tools: Sequence[ToolSpec], bias: float) -> HeadDecision:
         llama_cpp = _import_llama()
-        tilt = _HeadTilt(*self._head_token_ids(tools), bias)
+        key = tuple(t.name for t in tools)
+        if key not in self._head_ids:
+            self._head_ids[key] = head_token_ids(self._llama, tools)
+        tilt = HeadTilt(*self._head_ids[key], bias)
         head = self._complete(
             turn,
             prompt,
@@ -339,7 +279,7 @@ class LocalLlamaBackend:
         if not tools:
             yield from self._stream_text(turn, prompt)
             return
-        decided = self._decide_head(turn, prompt, tools, self._bias_for(messages)).head
+        decided = self._decide_head(turn, prompt, tools, bias_for(messages, self.tool_bias)).head
         if decided.tool is None:  # "message" (or, never under the grammar, nothing)
             yield from self._stream_text(turn, prompt + fmt.MESSAGE_HEAD + "\n")
         else:
@@ -429,7 +369,7 @@ class LocalLlamaBackend:
 
         def decide() -> HeadDecision:
             self._load_blocking()
-            return self._decide_head(_Turn(threading.Event()), prompt, tools, self._bias_for(messages))
+            return self._decide_head(_Turn(threading.Event()), prompt, tools, bias_for(messages, self.tool_bias))
 
         return await asyncio.get_running_loop().run_in_executor(self._executor, decide)
 
