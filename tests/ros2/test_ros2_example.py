@@ -13,6 +13,8 @@ import time
 import pytest
 from mcp import Client
 
+from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ScriptedReply, TextReply, ToolCallReply
+
 from .ros2_testkit import BOUND_S, ROOT, Notes, RosWorld, body, ros_env
 
 pytestmark = pytest.mark.integration
@@ -73,3 +75,21 @@ async def test_the_example_robot_through_robovoice_serve(ros: RosWorld) -> None:
         await notes.wait_for(changes + 1)
         assert time.monotonic() - killed < 4.0
         assert {t.name for t in (await client.list_tools()).tools} == set()
+
+
+async def test_the_example_robot_talks_through_robovoice_chat(ros: RosWorld) -> None:
+    """`robovoice chat --robot ros2://…` with a scripted model (the embedded one works too, only slower)."""
+    robot = ros.spawn([sys.executable, str(EXAMPLE / "robot.py"), "--speed", "20"])
+    await robot.ready("robot ready")
+    script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("navigate_to", {"target": "bedroom"}),)),
+                                   TextReply("I'm in the bedroom now.")]
+    async with FakeOpenAIServer(script) as llm:
+        chat = await asyncio.to_thread(
+            subprocess.run, [sys.executable, "-m", "robovoice.cli", "chat", "--robot", ros.uri(EXAMPLE / "manifests"),
+                             "--llm", llm.base_url, "--model", llm.model],
+            cwd=ROOT, input="please drive to the bedroom\n", capture_output=True, text=True,
+            env=ros_env(ros.domain, ros.log_dir), timeout=120, check=False)
+    assert chat.returncode == 0, chat.stderr
+    assert "→ navigate_to(target='bedroom')" in chat.stdout
+    assert '← navigate_to ok' in chat.stdout and "m to go" in chat.stdout
+    assert "robot> I'm in the bedroom now." in chat.stdout

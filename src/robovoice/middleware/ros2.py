@@ -46,6 +46,9 @@ from robovoice.middleware.ros2_topics import TopicSubscription, subscribe_topic
 
 log = logging.getLogger(__name__)
 
+DISCOVERY_S = 3.0
+"""At start, how long to wait for the manifests' nodes already running to be discovered."""
+
 
 def load_bindings(settings: Ros2Settings) -> dict[str, NodeBinding]:
     """Compile the manifest folder of `settings`; bad files are logged (their nodes expose
@@ -97,6 +100,18 @@ class Ros2Middleware:
         self._presence = GraphPresence(self._bridge, self._bindings)
         self._presence.start()
         self._calls = Ros2Calls(self._bridge, self._presence)
+        await self._discover(self._presence)
+
+    async def _discover(self, presence: GraphPresence) -> None:
+        """Give DDS discovery a moment (typically 0.1 s, at worst seconds) to find the nodes
+        already running, so that a one-shot command sees them; later ones arrive by presence."""
+        try:
+            async with asyncio.timeout(DISCOVERY_S):
+                while len(presence.nodes()) < len(self._bindings):
+                    await presence.changed()
+        except TimeoutError:
+            missing = sorted(set(self._bindings) - set(presence.nodes()))
+            log.info("not in the ROS graph yet (their tools come when they do): %s", ", ".join(missing))
 
     async def close(self) -> None:
         bridge, self._bridge = self._bridge, None
