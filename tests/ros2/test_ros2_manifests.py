@@ -131,3 +131,12 @@ def test_a_folder_with_only_bad_manifests_is_a_config_error(tmp_path: Path) -> N
     _write(tmp_path, "good", {"node": "good", "tools": [
         {"name": "power", "rpc": "/power", "description": "p", "ros2": {"type": "std_srvs/srv/SetBool"}}]})
     assert set(load_bindings(Ros2Settings.from_uri(f"ros2://?manifests={tmp_path}"))) == {"good"}
+
+
+def test_check_manifests_reports_ros2_problems(tmp_path: Path) -> None:
+    from robovoice.manifest.check import check_manifest_dir
+
+    _write(tmp_path, "robot", {"node": "robot", "tools": [_tool(type="std_srvs/srv/SetBool", fixed={"dat": True})]})
+    report = check_manifest_dir(tmp_path)
+    assert not report.ok and any("$.tools[0].ros2.fixed.dat" in line for line in report.lines())
+    assert check_manifest_dir(MANIFESTS).ok

@@ -18,6 +18,7 @@ from robovoice.manifest.errors import format_error, sort_errors
 from robovoice.manifest.loader import load_manifest_dir
 from robovoice.manifest.model import Manifest
 from robovoice.manifest.resolve import NodeSurface, SnapshotEntry, ToolEntry, resolve_node
+from robovoice.manifest.ros2_model import ros2_problems
 from robovoice.middleware.base import NodeInfo
 
 
@@ -65,6 +66,7 @@ def check_manifest_dir(root: str | Path, nodes: Mapping[str, NodeInfo] | None = 
                          f"({item.source})")
             surface = _unchecked_surface(node, item.manifest, item.source)
         catalog.update(node, surface)
+        errors.extend(ros2_problems(item.manifest, item.source))  # types and fields of `ros2` blocks
     errors.extend(catalog.errors())
     if not files:
         notes.append(f"no manifests found: expected <node>/mcp.json or <node>.mcp.json under {root}")

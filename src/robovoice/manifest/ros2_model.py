@@ -71,3 +71,25 @@ class Ros2SnapshotBinding(_Strict):
     fields: tuple[str, ...] | None = Field(
         default=None, description="only these fields of the message (dotted paths); default: all"
     )
+
+
+def ros2_problems(manifest: Any, source: str) -> list[Any]:
+    """The ROS 2 problems of a manifest with `ros2` blocks (unknown or uninstalled types, fields a
+    type lacks, ...) as `ManifestError`s; none for a manifest without such blocks. Checked
+    against the interface packages installed here (`robovoice check-manifests`)."""
+    if not any(d.ros2 is not None for d in (*manifest.tools, *manifest.snapshots)):
+        return []
+    from robovoice.errors import ManifestError, MissingDependencyError
+    from robovoice.manifest.errors import ManifestErrors
+    from robovoice.manifest.loader import LoadedManifest
+
+    try:
+        from robovoice.middleware.ros2_bindings import compile_manifest
+    except MissingDependencyError as exc:
+        return [ManifestError(source, "$", "the manifest binds ROS 2 interfaces, but ROS 2 is not installed here",
+                              exc.install)]
+    try:
+        compile_manifest(LoadedManifest(manifest, source))
+    except ManifestErrors as exc:
+        return list(exc.errors)
+    return []
