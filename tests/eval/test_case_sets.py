@@ -16,26 +16,26 @@ ACTUATION = {"navigate_to", "return_to_dock", "cancel_navigation", "stop_robot",
 
 def test_text_test_set_covers_every_class() -> None:
     cases = load_cases(DATA / "text-test.jsonl")
-    classes = Counter(str(getattr(c, "class")) for c in cases)
+    classes = Counter(str(c.case_class) for c in cases)
     assert classes["compound"] >= 20 and classes["negated"] >= 15
     assert classes["mention"] >= 15 and classes["ability"] >= 10
     for case in cases:
-        if getattr(case, "class") in ("negated", "mention", "ability"):
+        if case.case_class in ("negated", "mention", "ability"):
             assert not case.expect and set(case.forbid) == ACTUATION, case.id
-        if getattr(case, "class") == "compound":
+        if case.case_class == "compound":
             assert len(case.expect) >= 2, case.id
 
 
 def test_audio_test_set_clips_exist_and_forbid_acting_on_garble() -> None:
     cases = load_cases(DATA / "audio-test.jsonl")
-    classes = Counter(str(getattr(c, "class")) for c in cases)
+    classes = Counter(str(c.case_class) for c in cases)
     assert classes["unintelligible"] >= 5 and classes["nowake"] >= 5
     for case in cases:
         assert case.audio is not None and case.wake is not None
         with wave.open(str(case.audio)) as wf:
             assert (wf.getnchannels(), wf.getsampwidth(), wf.getframerate()) == (1, 2, 16000), case.id
             assert 1.5 < wf.getnframes() / wf.getframerate() < 6.0, case.id
-        if getattr(case, "class") in ("unintelligible", "nowake", "negated", "mention", "ability"):
+        if case.case_class in ("unintelligible", "nowake", "negated", "mention", "ability"):
             assert not case.expect and set(case.forbid) == ACTUATION, case.id
     dev_ids = {c.id for c in load_cases(DATA / "audio.jsonl")}
     assert not dev_ids & {c.id for c in cases}

@@ -24,7 +24,8 @@ async def test_the_report_says_what_reached_the_robot() -> None:
     cases = [
         case(id="lounge", text="Go to the lounge", expect=[{"tool": "navigate_to", "args": {"target": "living room"}}]),
         case(id="garage", text="Drive to the garage", expect=[], forbid=["navigate_to"]),
-        case(id="negated", text="Don't switch the projector on", expect=[], forbid=["set_projector_power"]),
+        case(id="negated", text="Don't switch the projector on", expect=[], forbid=["set_projector_power"],
+             **{"class": "negated"}),
         case(id="read-only", text="How is the battery?", expect=[], forbid=["get_battery_state"]),
     ]
     script: list[ScriptedReply] = [
@@ -57,3 +58,5 @@ async def test_the_report_says_what_reached_the_robot() -> None:
     assert not read_only["passed"] and read_only["false_actuations"] == []
 
     assert report["false_actuations"] == 1 and report["passed"] == 2
+    assert report["classes"]["negated"] == {"cases": 1, "passed": 0, "false_actuations": 1, "accuracy": 0.0}
+    assert report["classes"]["-"]["cases"] == 3

@@ -25,7 +25,7 @@ class ExpectedCall(BaseModel):
 class Case(BaseModel):
     """One evaluation case. Unknown fields (`note`, metadata) are kept and ignored."""
 
-    model_config = ConfigDict(extra="allow", frozen=True)
+    model_config = ConfigDict(extra="allow", frozen=True, populate_by_name=True)
 
     id: str
     text: str | None = None
@@ -35,6 +35,8 @@ class Case(BaseModel):
     expect_any: tuple[tuple[ExpectedCall, ...], ...] = ()
     forbid: tuple[str, ...] = ()
     setup: str | None = None
+    # what kind of request this is (`compound`, `negated`, `mention`…); reports break figures down by it
+    case_class: str | None = Field(default=None, alias="class")
 
     @model_validator(mode="after")
     def _one_input(self) -> Case:

@@ -72,6 +72,7 @@ class CaseResult:
     latency_ms: dict[str, float]
     false_actuations: list[str] = field(default_factory=list)
     extra: dict[str, Any] = field(default_factory=dict)
+    case_class: str | None = None  # the case's `class` field, for the per-class figures
 
     def to_dict(self) -> dict[str, Any]:
         out = {"id": self.id, "passed": self.passed, "reason": self.reason, "calls": self.calls,
@@ -86,6 +87,18 @@ class EvalReport:
     backend: str
     wall_s: float
 
+    def by_class(self) -> dict[str, dict[str, Any]]:
+        """Cases, passes and false actuations per case `class` (a case file's own field)."""
+        out: dict[str, dict[str, Any]] = {}
+        for r in self.results:
+            row = out.setdefault(r.case_class or "-", {"cases": 0, "passed": 0, "false_actuations": 0})
+            row["cases"] += 1
+            row["passed"] += int(r.passed)
+            row["false_actuations"] += len(r.false_actuations)
+        for row in out.values():
+            row["accuracy"] = round(row["passed"] / row["cases"], 4)
+        return out
+
     def to_dict(self) -> dict[str, Any]:
         passed = sum(r.passed for r in self.results)
         headline = [r.latency_ms[HEADLINE_STAGE] for r in self.results if HEADLINE_STAGE in r.latency_ms]
@@ -98,6 +111,7 @@ class EvalReport:
             "p95": round(percentile(headline, 95), 1) if headline else None,
             "latency_stage": HEADLINE_STAGE,
             "stages": summarise(r.latency_ms for r in self.results),
+            "classes": self.by_class(),
             "backend": self.backend,
             "wall_s": round(self.wall_s, 1),
             "results": [r.to_dict() for r in self.results],
@@ -152,6 +166,7 @@ async def run_case(
         latency_ms=turns[0].metrics.as_dict() if turns else {},
         false_actuations=list(verdict.false_actuations),
         extra=details,
+        case_class=case.case_class,
     )
 
 
