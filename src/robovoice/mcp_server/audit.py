@@ -16,15 +16,26 @@ interleave inside a line. Fields:
 
 Images are not copied into the log: a ``data`` string longer than 256 characters is
 replaced by ``"<N bytes base64>"``.
+
+Crash safety: each record is encoded whole, then written with one ``os.write`` on an
+``O_APPEND`` descriptor (no user-space buffer), so a ``kill -9`` at any moment leaves at
+most the line being written incomplete; `read_audit` skips such a torn line and says so.
+Rotation by size: when a line would take the file past `max_bytes`, ``audit.jsonl`` becomes
+``audit.jsonl.1`` (``.1`` → ``.2`` …, `keep` files kept), under an ``flock`` so several
+writing processes rotate once. A full or read-only disk never fails a tool call: the failure
+is logged once (then once more when writing works again) and counted in `failures`.
 """
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import json
 import logging
 import os
 import threading
-from dataclasses import dataclass
+from collections.abc import Iterator
+from dataclasses import dataclass, field
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any, Literal
@@ -34,6 +45,8 @@ from robovoice.errors import ConfigError
 log = logging.getLogger(__name__)
 
 _MAX_INLINE_DATA = 256
+DEFAULT_MAX_BYTES = 16 * 1024 * 1024
+DEFAULT_KEEP = 5
 
 
 def default_audit_path() -> Path:
@@ -94,37 +107,182 @@ def _shrink(value: Any) -> Any:
 
 
 class AuditLog:
-    """Appends `AuditRecord`s to a JSON Lines file; `AuditLog(None)` records nothing."""
+    """Appends `AuditRecord`s to a JSON Lines file; `AuditLog(None)` records nothing.
 
-    def __init__(self, path: Path | None) -> None:
+    `max_bytes`: rotate when a line would take the file past this size (0: never rotate);
+    `keep`: rotated files kept (``.1`` newest … ``.keep`` oldest). Writing never raises.
+    """
+
+    def __init__(self, path: Path | None, *, max_bytes: int = DEFAULT_MAX_BYTES, keep: int = DEFAULT_KEEP) -> None:
+        if max_bytes < 0 or keep < 1:
+            raise ConfigError(f"audit log rotation needs max_bytes >= 0 and keep >= 1, not {max_bytes}, {keep}")
         self.path = path
+        self.max_bytes = max_bytes
+        self.keep = keep
+        self.written = 0
+        self.failures = 0
+        self._failing = False
         self._lock = threading.Lock()
         self._fd: int | None = None
         if path is not None:
             try:
                 path.parent.mkdir(parents=True, exist_ok=True)
-                # O_APPEND: every write lands at the end, whatever other writers do.
-                self._fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND, 0o600)
+                self._fd = self._open(path)
+                self._end_torn_line(path)
             except OSError as exc:
                 raise ConfigError(f"cannot open the audit log {path}: {exc.strerror or exc} "
                                   "(choose another with --audit-log F)") from None
+
+    @staticmethod
+    def _open(path: Path) -> int:
+        # O_APPEND: every write lands at the end, whatever other writers do.
+        return os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC, 0o600)
+
+    def _end_torn_line(self, path: Path) -> None:
+        """A writer killed mid-line left the file without a final newline: end that line, so
+        our first record does not merge into it."""
+        assert self._fd is not None
+        size = os.fstat(self._fd).st_size
+        if size == 0:
+            return
+        with path.open("rb") as f:
+            f.seek(size - 1)
+            last = f.read(1)
+        if last != b"\n":
+            os.write(self._fd, b"\n")
+            log.warning("the audit log %s ended with an incomplete line (a writer was killed mid-record); "
+                        "readers skip it", path)
 
     @property
     def enabled(self) -> bool:
         return self._fd is not None
 
     def record(self, record: AuditRecord) -> None:
+        """Append one line. Never raises: a failure is counted and logged (once per outage)."""
         if self._fd is None:
             return
-        line = json.dumps(record.to_dict(), ensure_ascii=False, default=str) + "\n"
+        try:
+            line = (json.dumps(record.to_dict(), ensure_ascii=False, default=str) + "\n").encode("utf-8")
+        except (TypeError, ValueError, RecursionError) as exc:
+            self._failed(f"cannot encode the record of {record.tool}: {exc}")
+            return
         with self._lock:
+            if self._fd is None:  # closed meanwhile
+                return
             try:
-                os.write(self._fd, line.encode("utf-8"))
-            except OSError:
-                log.exception("cannot append to the audit log %s", self.path)
+                self._rotate_if_needed(len(line))
+                self._write(line)
+            except OSError as exc:
+                self._failed(f"cannot append to the audit log {self.path}: {exc.strerror or exc}")
+                return
+        self.written += 1
+        if self._failing:
+            self._failing = False
+            log.warning("the audit log %s is being written again (%d records lost meanwhile)", self.path,
+                        self.failures)
+
+    def _write(self, line: bytes) -> None:
+        assert self._fd is not None
+        before = os.fstat(self._fd).st_size
+        done = os.write(self._fd, line)
+        if done < len(line):  # disk full or file size limit mid-line: take the torn part back
+            with contextlib.suppress(OSError):
+                if os.fstat(self._fd).st_size == before + done:
+                    os.ftruncate(self._fd, before)
+            raise OSError(28, "short write (disk full or file size limit)")
+
+    def _rotate_if_needed(self, size: int) -> None:
+        assert self._fd is not None and self.path is not None
+        if self.max_bytes == 0:
+            return
+        current = os.fstat(self._fd)
+        if current.st_size == 0 or current.st_size + size <= self.max_bytes:
+            return
+        fcntl.flock(self._fd, fcntl.LOCK_EX)
+        try:
+            try:
+                on_disk = os.stat(self.path)
+                rotated_elsewhere = (on_disk.st_ino, on_disk.st_dev) != (current.st_ino, current.st_dev)
+            except FileNotFoundError:
+                rotated_elsewhere = True
+            if not rotated_elsewhere:
+                for n in range(self.keep - 1, 0, -1):
+                    older = rotated_path(self.path, n)
+                    if older.exists():
+                        os.replace(older, rotated_path(self.path, n + 1))
+                os.replace(self.path, rotated_path(self.path, 1))
+            fresh = self._open(self.path)
+        finally:
+            fcntl.flock(self._fd, fcntl.LOCK_UN)
+        os.close(self._fd)
+        self._fd = fresh
+
+    def _failed(self, message: str) -> None:
+        self.failures += 1
+        if not self._failing:
+            self._failing = True
+            log.error("%s; tool calls go on unaudited until it can be written again", message)
 
     def close(self) -> None:
         with self._lock:
             if self._fd is not None:
                 os.close(self._fd)
                 self._fd = None
+
+
+def rotated_path(path: Path, n: int) -> Path:
+    """``audit.jsonl`` → ``audit.jsonl.<n>``."""
+    return path.with_name(f"{path.name}.{n}")
+
+
+@dataclass(frozen=True, slots=True)
+class SkippedLine:
+    """A line `read_audit` could not parse: `torn` when it is a file's unterminated last line
+    (a writer killed mid-line), else damaged."""
+
+    path: Path
+    line: int
+    torn: bool
+
+
+@dataclass(slots=True)
+class AuditReading:
+    records: list[dict[str, Any]] = field(default_factory=list)
+    skipped: list[SkippedLine] = field(default_factory=list)
+    files: list[Path] = field(default_factory=list)
+
+
+def audit_files(path: Path, *, rotated: bool = True) -> list[Path]:
+    """`path` and, with `rotated`, its rotated files that exist, oldest first."""
+    older: list[Path] = []
+    if rotated:
+        n = 1
+        while rotated_path(path, n).exists():
+            older.append(rotated_path(path, n))
+            n += 1
+    return [*reversed(older), *([path] if path.exists() else [])]
+
+
+def iter_lines(path: Path) -> Iterator[tuple[int, dict[str, Any] | None, bool]]:
+    """``(line number, record or None if unparsable, whether the line was terminated)``."""
+    with path.open("rb") as f:
+        for number, raw in enumerate(f, start=1):
+            terminated = raw.endswith(b"\n")
+            try:
+                value = json.loads(raw)
+            except ValueError:  # also UnicodeDecodeError
+                value = None
+            yield number, value if isinstance(value, dict) else None, terminated
+
+
+def read_audit(path: Path, *, rotated: bool = True) -> AuditReading:
+    """Every record in `path` (and its rotated files, oldest first), skipping torn or damaged lines."""
+    reading = AuditReading()
+    for file in audit_files(path, rotated=rotated):
+        reading.files.append(file)
+        for number, value, terminated in iter_lines(file):
+            if value is None:
+                reading.skipped.append(SkippedLine(file, number, torn=not terminated))
+            else:
+                reading.records.append(value)
+    return reading
