@@ -25,6 +25,7 @@ COMMAND_MODULES = (
     "robovoice.commands.bench",
     "robovoice.commands.console",
     "robovoice.commands.models",
+    "robovoice.commands.audit",
 )
 
 
