@@ -26,6 +26,10 @@ from rclpy.qos import QoSProfile, ReliabilityPolicy  # isort: skip
 log = logging.getLogger(__name__)
 
 MAX_PENDING = 8
+RAW_IMAGE_INTERVAL_S = 0.5
+"""Raw `sensor_msgs/Image` frames are PNG-encoded here, ~50 ms for 640 x 480 on one core: at most
+one frame per this interval is converted (the newer ones in between are dropped), so a 30 Hz
+camera does not take a core and a half. `CompressedImage` frames are cheap: all are taken."""
 
 
 class TopicSubscription:
@@ -41,11 +45,19 @@ class TopicSubscription:
         self._lock = threading.Lock()
         self._scheduled = False
         self._closed = False
+        raw_image = getattr(msg_type, "__module__", "").startswith("sensor_msgs.") and msg_type.__name__ == "Image"
+        self._interval = RAW_IMAGE_INTERVAL_S if raw_image else 0.0
+        self._last = -float("inf")
         qos = QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT)
         self._sub = bridge.node.create_subscription(msg_type, topic, self._receive, qos,
                                                     callback_group=bridge.group)
 
     def _receive(self, msg: Any) -> None:  # on the executor thread
+        if self._interval:
+            now = time.monotonic()
+            if now - self._last < self._interval:
+                return
+            self._last = now
         stamp = stamp_of(msg) or time.time()
         try:
             value = self._convert(msg)
