@@ -17,6 +17,12 @@ async def test_bench_mcp_reports_every_series() -> None:
         assert echo["robot"]["p50"] > 0 and echo["ratio_p50"] > 0
     for transport in ("inprocess", "http", "http_2026"):
         assert report[transport]["snapshot_vs_noop"]["snapshot"]["n"] == 10
+    assert set(report["stdio"]["floor"]) == {"pipe"}
+    for transport in ("http", "http_2026"):  # the floors are timed in the same blocks
+        floor = report[transport]["floor"]
+        assert set(floor) == {"http_echo", "tcp"}
+        assert floor["http_echo"]["n"] == 10 and floor["http_echo"]["robot_ratio_p50"] > 0
+        assert set(report[transport]["goals"]) == {"p50_within_ms", "within_floor_ratio"}
     rates = [row["rate_hz"] for row in report["ingest"]]
     assert rates == [1000, 10000]
     for row in report["ingest"]:
@@ -24,6 +30,7 @@ async def test_bench_mcp_reports_every_series() -> None:
         assert row["tracemalloc_growth_kb"] < 512  # one slot per topic: flat, whatever the rate
     text = format_report(report)
     assert "stdio (child process)" in text and "10000 Hz" in text and "ratio p50" in text
+    assert "HTTP echo" in text and "raw TCP round trip" in text and "bare pipe round trip" in text
 
 
 async def test_bench_mcp_needs_enough_calls() -> None:

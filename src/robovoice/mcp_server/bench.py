@@ -6,6 +6,10 @@
   validation, dispatch, audit log on), against a plain SDK server (`MCPServer`) offering the
   same ``echo`` tool, in the same run, in interleaved blocks so machine load hits both alike;
   the ratio of the two (goal: at most 1.2).
+- **Transport floors**, timed in the same interleaved blocks (`bench_floor`): a minimal HTTP
+  echo on the same server stack (uvicorn + Starlette, httpx2 client) and a raw loopback
+  TCP round trip for HTTP, a bare pipe round trip for stdio; robovoice as a ratio of each
+  (HTTP goals: p50 at most 3 ms and at most 2 x the HTTP echo, for both protocol versions).
 - **Snapshot read vs no-op**: a snapshot tool (latest value from the `SnapshotStore`) against
   a no-op RPC tool on the same server (goal: within 1 ms; a snapshot never waits for a message).
 - **Snapshot ingest**: a node publishes at 1 kHz and 10 kHz into a tracked topic while the
@@ -37,6 +41,7 @@ from mcp.client.stdio import StdioServerParameters
 from mcp.server.mcpserver import MCPServer
 
 from robovoice.mcp_server.audit import AuditLog
+from robovoice.mcp_server.bench_floor import Call, net_floors, pipe_floor
 from robovoice.mcp_server.server import RobotToolServer
 from robovoice.middleware.base import JSON, NodeHost, NodeInfo, RpcInfo
 from robovoice.middleware.memory import MemoryMiddleware
@@ -45,6 +50,8 @@ BLOCK = 25  # calls per interleaved block
 WARMUP = 20
 GOAL_RATIO = 1.2
 GOAL_SNAPSHOT_MS = 1.0
+GOAL_HTTP_MS = 3.0
+GOAL_FLOOR_RATIO = 2.0  # robovoice over HTTP vs the minimal HTTP echo, p50
 INGEST_RATES_HZ = (1_000, 10_000)
 INGEST_SECONDS = 2.0
 STATE = {"x": 2.25, "y": 6.5, "heading_deg": 90.0, "nearest_place": "kitchen", "moving": False}
@@ -127,16 +134,15 @@ def _stats(samples_ms: list[float]) -> dict[str, float]:
     }
 
 
-async def _timed(call: Callable[[], Awaitable[types.CallToolResult]], samples: list[float]) -> None:
+async def _timed(call: Call, samples: list[float]) -> None:
     start = time.perf_counter()
     result = await call()
     samples.append((time.perf_counter() - start) * 1000.0)
-    if result.is_error:
+    if isinstance(result, types.CallToolResult) and result.is_error:
         raise RuntimeError(f"benchmark call failed: {result.content}")
 
 
-async def _interleaved(calls: dict[str, Callable[[], Awaitable[types.CallToolResult]]],
-                       n: int) -> dict[str, dict[str, float]]:
+async def _interleaved(calls: dict[str, Call], n: int) -> dict[str, dict[str, float]]:
     samples: dict[str, list[float]] = {name: [] for name in calls}
     for call in calls.values():
         for _ in range(min(WARMUP, n)):
@@ -152,6 +158,12 @@ def _compare(stats: dict[str, dict[str, float]]) -> dict[str, Any]:
     robot, plain = stats["robot"], stats["plain"]
     return {"robot": robot, "plain": plain,
             "ratio_p50": round(robot["p50"] / plain["p50"], 3), "ratio_p95": round(robot["p95"] / plain["p95"], 3)}
+
+
+def _floors(stats: dict[str, dict[str, float]], names: tuple[str, ...]) -> dict[str, Any]:
+    """Each floor's stats, and robovoice's p50 as a multiple of it."""
+    robot = stats["robot"]["p50"]
+    return {name: {**stats[name], "robot_ratio_p50": round(robot / stats[name]["p50"], 3)} for name in names}
 
 
 def _echo_call(client: Client) -> Callable[[], Awaitable[types.CallToolResult]]:
@@ -181,9 +193,10 @@ async def _bench_stdio(n: int) -> dict[str, Any]:
     async with Client(StdioServerParameters(command=sys.executable, args=_child("robot", "stdio")[1:]),
                       mode="legacy", cache=None) as robot, \
             Client(StdioServerParameters(command=sys.executable, args=_child("plain", "stdio")[1:]),
-                   mode="legacy", cache=None) as plain:
-        stats = await _interleaved({"robot": _echo_call(robot), "plain": _echo_call(plain)}, n)
-    return {"echo": _compare(stats)}
+                   mode="legacy", cache=None) as plain, \
+            pipe_floor() as pipe:
+        stats = await _interleaved({"robot": _echo_call(robot), "plain": _echo_call(plain), "pipe": pipe}, n)
+    return {"echo": _compare(stats), "floor": _floors(stats, ("pipe",))}
 
 
 @contextlib.asynccontextmanager
@@ -204,16 +217,22 @@ async def _http_child(kind: str) -> AsyncIterator[str]:
 
 
 async def _bench_http(n: int) -> dict[str, dict[str, Any]]:
-    """Both servers in child processes; a 2025 session (``legacy``) and 2026-07-28 (``auto``) client each."""
+    """Both servers and the floors in child processes; a 2025 session (``legacy``) and a
+    2026-07-28 (``auto``) client each."""
     out: dict[str, dict[str, Any]] = {}
-    async with _http_child("robot") as robot_url, _http_child("plain") as plain_url:
+    async with _http_child("robot") as robot_url, _http_child("plain") as plain_url, net_floors() as floors:
         for mode in ("legacy", "auto"):
             async with Client(robot_url, mode=mode, cache=None) as robot, \
                     Client(plain_url, mode=mode, cache=None) as plain:
-                stats = await _interleaved({"robot": _echo_call(robot), "plain": _echo_call(plain)}, n)
+                stats = await _interleaved({"robot": _echo_call(robot), "plain": _echo_call(plain), **floors}, n)
                 snap = await _interleaved({"snapshot": lambda: robot.call_tool("get_state", {}),
                                            "noop": lambda: robot.call_tool("noop", {})}, n)
-            out[mode] = {"echo": _compare(stats), "snapshot_vs_noop": _snapshot_verdict(snap)}
+            floor = _floors(stats, ("http_echo", "tcp"))
+            robot_p50 = stats["robot"]["p50"]
+            goals = {"p50_within_ms": robot_p50 <= GOAL_HTTP_MS,
+                     "within_floor_ratio": floor["http_echo"]["robot_ratio_p50"] <= GOAL_FLOOR_RATIO}
+            out[mode] = {"echo": _compare(stats), "floor": floor, "goals": goals,
+                         "snapshot_vs_noop": _snapshot_verdict(snap)}
     return out
 
 
@@ -285,7 +304,8 @@ async def bench_mcp(n: int = 200, *, ingest_seconds: float = INGEST_SECONDS) -> 
     with tempfile.TemporaryDirectory(prefix="robovoice-bench-") as tmp:
         audit_dir = Path(tmp)
         report: dict[str, Any] = {"n": n, "block": BLOCK, "goal_ratio": GOAL_RATIO,
-                                  "goal_snapshot_ms": GOAL_SNAPSHOT_MS}
+                                  "goal_snapshot_ms": GOAL_SNAPSHOT_MS, "goal_http_ms": GOAL_HTTP_MS,
+                                  "goal_floor_ratio": GOAL_FLOOR_RATIO}
         report["inprocess"] = await _bench_inprocess(n, audit_dir)
         report["stdio"] = await _bench_stdio(n)
         http = await _bench_http(n)
@@ -306,6 +326,18 @@ def format_report(report: dict[str, Any]) -> str:
         r, p = echo["robot"], echo["plain"]
         lines.append(f"  {label:<38} robovoice p50 {r['p50']:7.3f} p95 {r['p95']:7.3f} | plain p50 {p['p50']:7.3f} "
                      f"p95 {p['p95']:7.3f} | ratio p50 {echo['ratio_p50']:.2f} p95 {echo['ratio_p95']:.2f}")
+    lines.append(f"Transport floors, ms, same run and blocks (HTTP goals: robovoice p50 <= "
+                 f"{report['goal_http_ms']:g} ms and <= {report['goal_floor_ratio']:g} x the HTTP echo)")
+    floor_labels = {"http_echo": "HTTP echo (uvicorn+Starlette, httpx2)", "tcp": "raw TCP round trip",
+                    "pipe": "bare pipe round trip"}
+    for key in ("stdio", "http", "http_2026"):
+        for name, floor in report[key]["floor"].items():
+            lines.append(f"  {labels[key]:<38} {floor_labels[name]:<38} p50 {floor['p50']:7.3f} "
+                         f"p95 {floor['p95']:7.3f} | robovoice / floor p50 {floor['robot_ratio_p50']:.2f}")
+        if "goals" in report[key]:
+            goals = report[key]["goals"]
+            verdict = "OK" if all(goals.values()) else "NOT MET: " + ", ".join(k for k, v in goals.items() if not v)
+            lines.append(f"  {labels[key]:<38} goals: {verdict}")
     lines.append(f"Snapshot tool vs no-op tool, ms (goal: p50 within {report['goal_snapshot_ms']} ms)")
     for key in ("inprocess", "http", "http_2026"):
         snap = report[key]["snapshot_vs_noop"]

@@ -38,6 +38,8 @@ from robovoice.config import read_secret_file
 from robovoice.errors import ConfigError
 from robovoice.mcp_server._groups import owned_tasks
 from robovoice.mcp_server.server import RobotToolServer
+from robovoice.mcp_server.sse_deferral import DeferSse
+from robovoice.mcp_server.tcp import listen_tcp
 
 log = logging.getLogger(__name__)
 
@@ -135,7 +137,8 @@ def is_wildcard(host: str) -> bool:
 
 def build_http_app(server: RobotToolServer, *, host: str = "127.0.0.1", token: str | None = None,
                    path: str = MCP_PATH, allowed_hosts: Iterable[str] = ()) -> ASGIApp:
-    """The ASGI app: the SDK's streamable-HTTP session manager at `path`, behind `HttpGuard`.
+    """The ASGI app: the SDK's streamable-HTTP session manager at `path`, behind `HttpGuard`;
+    `DeferSse` answers a 2025-session POST with JSON when its response is all it has to say.
 
     Allowed ``Host``/``Origin`` names: the loopback names, `host`, and `allowed_hosts`. A
     wildcard bind (0.0.0.0, ::) with a token and no `allowed_hosts` accepts any ``Host``.
@@ -154,7 +157,7 @@ def build_http_app(server: RobotToolServer, *, host: str = "127.0.0.1", token: s
     app = Starlette(routes=[Route(path, endpoint=StreamableHTTPASGIApp(manager))], lifespan=lifespan)
     extra = frozenset(allowed_hosts)
     any_host = is_wildcard(host) and token is not None and not extra
-    return HttpGuard(app, allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token, any_host=any_host)
+    return HttpGuard(DeferSse(app), allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token, any_host=any_host)
 
 
 @dataclass(frozen=True, slots=True)
@@ -184,14 +187,6 @@ class _Uvicorn(uvicorn.Server):
         yield
 
 
-def _bind(host: str, port: int) -> socket.socket:
-    family = socket.AF_INET6 if ":" in host else socket.AF_INET
-    try:
-        return socket.create_server((host, port), family=family, reuse_port=False)
-    except OSError as exc:
-        raise ConfigError(f"cannot listen on {host}:{port}: {exc.strerror or exc}") from None
-
-
 @asynccontextmanager
 async def http_server(
     server: RobotToolServer, *, host: str = "127.0.0.1", port: int = 0, token: str | None = None,
@@ -211,8 +206,13 @@ async def http_server(
 
 @asynccontextmanager
 async def asgi_server(app: ASGIApp, *, host: str, port: int, **uvicorn_options: Any) -> AsyncIterator[HttpEndpoint]:
-    """Run `app` under uvicorn on ``host:port`` (0: a free port) until the block ends."""
-    sock = _bind(host, port)
+    """Run `app` under uvicorn on ``host:port`` (0: a free port) until the block ends.
+
+    The listening socket is `listen_tcp`'s: every connection has ``TCP_NODELAY``, so a
+    response that uvicorn writes as headers then body does not wait ~40 ms for the
+    client's delayed ACK (Nagle).
+    """
+    sock = listen_tcp(host, port)
     endpoint = HttpEndpoint(host, sock.getsockname()[1])
     config = uvicorn.Config(app, log_config=None, lifespan="on", timeout_graceful_shutdown=GRACEFUL_SHUTDOWN_S,
                             **uvicorn_options)
