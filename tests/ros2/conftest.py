@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import importlib.util
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
+from ..installed import require
 from .ros2_testkit import RosWorld, next_domain
+
+
+@pytest.fixture(scope="session", autouse=True)
+def ros2_installed() -> None:
+    """rclpy and the message packages (the ros2 extra), and nav2_msgs for the example robot."""
+    require(importlib.util.find_spec("rclpy") is not None, "ROS 2 (rclpy)", "pip install 'robovoice[ros2]'")
+    require(importlib.util.find_spec("nav2_msgs") is not None, "nav2_msgs (NavigateToPose)",
+            "bash scripts/build_ros2_interfaces.sh")
 
 
 @pytest.fixture
