@@ -28,6 +28,7 @@ from robovoice.config import RobotConfig, read_secret_file
 from robovoice.errors import ConfigError, RobotUnreachableError
 from robovoice.mcp_server._groups import unwrapped
 from robovoice.mcp_server.runtime import RobotSide, open_robot_side, wait_for_tools
+from robovoice.mcp_server.tcp import nodelay_transport
 from robovoice.sim import SimRobot
 
 log = logging.getLogger(__name__)
@@ -119,7 +120,8 @@ async def _remote_client(target: HttpAddress | StdioAddress, token_file: Path | 
             yield client
         return
     headers = {"Authorization": f"Bearer {read_secret_file(token_file, 'token')}"} if token_file else {}
-    http = httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(CONNECT_TIMEOUT_S, read=CALL_TIMEOUT_S))
+    http = httpx2.AsyncClient(headers=headers, timeout=httpx2.Timeout(CONNECT_TIMEOUT_S, read=CALL_TIMEOUT_S),
+                              transport=nodelay_transport())  # TCP_NODELAY: no Nagle wait per call
     async with http, Client(streamable_http_client(target.url, http_client=http),
                             message_handler=tools.handle_message, cache=None, mode="legacy") as client:
         yield client
