@@ -174,13 +174,16 @@ def parse_robot_address(text: str) -> RobotAddress:
     text = text.strip()
     if text == "sim":
         return SimAddress()
-    scheme = urlsplit(text).scheme if ":" in text else ""
-    parse = robot_schemes().get(scheme)
-    if parse is None:
-        raise UnsupportedURIError(text, known_forms(), what="robot address")
-    if scheme != "stdio" and not text.startswith(f"{scheme}://"):
-        raise ConfigError(f"robot address {text!r}: write {scheme}://… (with '//')")
-    return parse(text)
+    try:
+        scheme = urlsplit(text).scheme if ":" in text else ""
+        parse = robot_schemes().get(scheme)
+        if parse is None:
+            raise UnsupportedURIError(text, known_forms(), what="robot address")
+        if scheme != "stdio" and not text.startswith(f"{scheme}://"):
+            raise ConfigError(f"robot address {text!r}: write {scheme}://… (with '//')")
+        return parse(text)
+    except ValueError as exc:  # urlsplit: an unclosed [IPv6] bracket, a bad port, …
+        raise ConfigError(f"robot address {text!r} is not a valid URI: {exc}") from None
 
 
 def parse_middleware_uri(text: str, what: str = "middleware URI") -> MiddlewareAddress:

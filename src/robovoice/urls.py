@@ -20,6 +20,14 @@ _IPV6 = re.compile(r"^\[[0-9A-Fa-f:.]+(?:%[A-Za-z0-9_.-]+)?\]$")
 SECRET_NAMES = ("token", "key", "secret", "password", "auth")
 
 
+def split_uri(text: str, what: str = "URI") -> SplitResult:
+    """`urlsplit`, with its ``ValueError`` (an unclosed ``[`` of an IPv6 host) as a `ConfigError`."""
+    try:
+        return urlsplit(text)
+    except ValueError as exc:
+        raise ConfigError(f"{what} {text!r} is not a valid URI: {exc}") from None
+
+
 def check_host(host: str, what: str, example: str) -> str:
     """A host name, an IPv4 address or a bracketed IPv6 address (``[::1]``)."""
     if not host:
@@ -102,7 +110,7 @@ def refuse_secrets(options: Mapping[str, object], what: str, fix: str) -> None:
 def check_http_url(url: str, what: str, *, example: str, secret_fix: str) -> SplitResult:
     """An ``http://`` or ``https://`` URL with a valid host and port, no user name or password,
     and no secret in its query. Returns its parts."""
-    parts = urlsplit(url)
+    parts = split_uri(url, what)
     if parts.scheme not in ("http", "https"):
         raise ConfigError(f"{what}: expected an http:// or https:// URL, e.g. {example}, not {url!r}")
     if not parts.netloc:

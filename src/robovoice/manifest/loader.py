@@ -20,6 +20,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from robovoice.errors import ManifestError
+from robovoice.json_limits import json_depth_exceeds
 from robovoice.manifest.errors import ManifestErrors, json_path, sort_errors
 from robovoice.manifest.model import Manifest
 from robovoice.manifest.rules import semantic_errors
@@ -27,6 +28,7 @@ from robovoice.manifest.validation import translate
 
 MANIFEST_FILE = "mcp.json"
 MANIFEST_SUFFIX = ".mcp.json"
+MAX_MANIFEST_DEPTH = 64
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,7 +78,9 @@ def validate_manifest(data: object, source: str) -> Manifest:
         return data
     try:
         text = json.dumps(data, allow_nan=False, default=_mapping_as_dict)
-    except (TypeError, ValueError) as exc:
+        if json_depth_exceeds(text.encode("utf-8", "surrogatepass"), MAX_MANIFEST_DEPTH):
+            raise ValueError(f"it nests deeper than {MAX_MANIFEST_DEPTH} levels")
+    except (TypeError, ValueError, RecursionError) as exc:
         raise ManifestErrors([ManifestError(
             source, "$", f"the manifest is not plain JSON: {exc}",
             "use only objects, arrays, strings, finite numbers, true/false and null",
@@ -120,6 +124,11 @@ def _no_constant(name: str) -> float:
 
 
 def _parse_json(text: str, source: str) -> object:
+    if json_depth_exceeds(text.encode("utf-8", "surrogatepass"), MAX_MANIFEST_DEPTH):
+        raise ManifestErrors([ManifestError(
+            source, "$", f"the manifest nests arrays/objects deeper than {MAX_MANIFEST_DEPTH} levels",
+            "flatten it: no manifest needs that depth",
+        )])
     try:
         data = json.loads(text, object_pairs_hook=_pairs, parse_constant=_no_constant)
     except json.JSONDecodeError as exc:

@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from urllib.parse import urlsplit
 
 from robovoice.errors import ConfigError, UnsupportedURIError
 from robovoice.middleware.base import Middleware
+from robovoice.urls import split_uri
 
 
 def _check_memory(uri: str) -> None:
@@ -41,7 +41,7 @@ def check_middleware_uri(uri: str) -> None:
     """Check `uri` without creating its adapter (no extra needed): the scheme always, and the
     whole URI for the adapters whose URI parsers are plain code (memory, zenoh, ros2); any
     other checks its own when opened."""
-    scheme = urlsplit(uri).scheme if "://" in uri else ""
+    scheme = split_uri(uri, "middleware URI").scheme if "://" in uri else ""
     if scheme not in ADAPTERS:
         raise UnsupportedURIError(uri, [f"{s}://" for s in ADAPTERS], what="middleware URI")
     if scheme == "memory":
@@ -58,7 +58,7 @@ def check_middleware_uri(uri: str) -> None:
 
 def open_middleware(uri: str) -> Middleware:
     """Create (not yet start) the middleware adapter for `uri`."""
-    scheme = urlsplit(uri).scheme if "://" in uri else ""
+    scheme = split_uri(uri, "middleware URI").scheme if "://" in uri else ""
     factory = ADAPTERS.get(scheme)
     if factory is None:
         raise UnsupportedURIError(uri, [f"{s}://" for s in ADAPTERS], what="middleware URI")

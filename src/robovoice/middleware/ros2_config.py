@@ -19,9 +19,10 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
-from urllib.parse import parse_qs, urlsplit
+from urllib.parse import parse_qs
 
 from robovoice.errors import ConfigError
+from robovoice.urls import split_uri
 
 Discovery = Literal["localhost", "subnet", "off"]
 _KNOWN = ("discovery", "domain_id", "lease", "manifests", "peers")
@@ -43,7 +44,7 @@ class Ros2Settings:
 
     @classmethod
     def from_uri(cls, uri: str) -> Ros2Settings:
-        parts = urlsplit(uri)
+        parts = split_uri(uri, "ros2 URI")
         if parts.scheme != "ros2":
             raise ConfigError(f"not a ros2:// URI: {uri!r}")
         if parts.netloc or parts.path not in ("", "/"):

@@ -30,10 +30,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal, cast
-from urllib.parse import urlsplit
 
 from robovoice.errors import ConfigError
-from robovoice.urls import check_port, query_options, split_host_port
+from robovoice.urls import check_port, query_options, split_host_port, split_uri
 
 Mode = Literal["peer", "client", "router"]
 DEFAULT_HOST = "127.0.0.1"
@@ -71,7 +70,7 @@ class ZenohSettings:
 
     @classmethod
     def from_uri(cls, uri: str) -> ZenohSettings:
-        parts = urlsplit(uri)
+        parts = split_uri(uri, "zenoh URI")
         if parts.scheme != "zenoh" or not uri.startswith("zenoh://"):
             raise ConfigError(f"not a zenoh:// URI: {uri!r}; write {FORM}")
         if parts.fragment:

@@ -1,0 +1,32 @@
+"""How deep a JSON text nests, measured without parsing it (no recursion, linear time).
+
+Used before ``json.loads`` wherever JSON arrives from outside (manifests, HTTP bodies): the
+standard parser recurses once per level and raises ``RecursionError`` near 1000 levels, and
+the validators after it recurse too.
+"""
+
+from __future__ import annotations
+
+import re
+
+_STRING = re.compile(rb'"(?:[^"\\]|\\.)*"', re.DOTALL)
+_BRACKET = re.compile(rb"[\[\]{}]")
+
+
+def json_depth_exceeds(body: bytes, max_depth: int) -> bool:
+    """Whether `body` (JSON text, possibly malformed) nests arrays/objects deeper than `max_depth`.
+
+    Brackets inside strings do not count; a malformed body is measured as far as its
+    brackets go (the parser refuses it later anyway).
+    """
+    if body.count(b"[") + body.count(b"{") <= max_depth:
+        return False
+    depth = 0
+    for match in _BRACKET.finditer(_STRING.sub(b'""', body)):
+        if match[0] in (b"[", b"{"):
+            depth += 1
+            if depth > max_depth:
+                return True
+        else:
+            depth = max(0, depth - 1)
+    return False
