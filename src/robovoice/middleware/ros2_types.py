@@ -23,11 +23,20 @@ import importlib
 import math
 import re
 import struct
+import warnings
 import zlib
 from collections.abc import Mapping
 from typing import Any
 
-from rosidl_parser import definition as d
+from robovoice.errors import MissingDependencyError
+
+try:
+    with warnings.catch_warnings():  # lark, under rosidl_generator_py, imports the deprecated sre_parse
+        warnings.simplefilter("ignore", DeprecationWarning)
+        import rosidl_generator_py  # noqa: F401  # imported by rclpy on the first message type: do it here
+        from rosidl_parser import definition as d
+except ImportError as exc:  # pragma: no cover - depends on the install
+    raise MissingDependencyError("the ROS 2 middleware", "pip install 'robovoice[ros2]'") from exc
 
 _TYPE_NAME = re.compile(r"^([A-Za-z][A-Za-z0-9_]*)/(msg|srv|action)/([A-Z][A-Za-z0-9]*)$")
 
