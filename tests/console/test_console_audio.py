@@ -17,6 +17,7 @@ from robovoice.audio.format import MODEL_FORMAT, convert
 from robovoice.audio.wav import read_wav
 from robovoice.console.voice import VoiceBridge
 from robovoice.llm.fake_server import CallbackReply
+from robovoice.voice.models import VoiceModels
 
 from .console_testkit import next_message, running_console
 from .test_console_browser import _route
@@ -25,11 +26,9 @@ CLIP = Path(__file__).parents[1] / "data" / "audio" / "cmd_piper_kitchen.wav"  #
 pytestmark = pytest.mark.timeout(180)  # the real voice models load (~5 s quiet, 15 s on a busy machine)
 
 
-async def test_push_to_talk_over_the_audio_socket_drives_the_robot_and_speaks_back() -> None:
-    from robovoice.voice.models import load_voice_models
-
+async def test_push_to_talk_over_the_audio_socket_drives_the_robot_and_speaks_back(voice_models: VoiceModels) -> None:
     def bridge(backend: Any, tools: Any) -> VoiceBridge:
-        return VoiceBridge(load_voice_models, backend, tools)
+        return VoiceBridge(lambda: voice_models, backend, tools)
 
     pcm = convert(read_wav(CLIP), MODEL_FORMAT).bytes + bytes(MODEL_FORMAT.frames(1.5) * 2)
     async with (running_console(default=CallbackReply(_route), voice=bridge) as run,

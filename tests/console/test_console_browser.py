@@ -19,6 +19,7 @@ import pytest
 
 from robovoice.console.voice import VoiceBridge
 from robovoice.llm.fake_server import CallbackReply, ScriptedCall, TextReply, ToolCallReply
+from robovoice.voice.models import VoiceModels
 
 from ..installed import missing, require
 from .console_testkit import running_console
@@ -92,13 +93,11 @@ async def test_a_typed_request_shows_the_call_and_the_robot_in_the_kitchen(playw
 
 
 async def test_a_spoken_command_through_the_fake_microphone_drives_the_robot(
-        playwright_api: ModuleType, tmp_path: Path) -> None:
-    from robovoice.voice.models import load_voice_models
-
+        playwright_api: ModuleType, voice_models: VoiceModels, tmp_path: Path) -> None:
     wav = _padded(CLIP, tmp_path / "hey-jarvis-kitchen.wav")
 
     def bridge(backend: Any, tools: Any) -> VoiceBridge:
-        return VoiceBridge(load_voice_models, backend, tools)
+        return VoiceBridge(lambda: voice_models, backend, tools)
 
     async with (running_console(default=CallbackReply(_route), voice=bridge) as run,
                 playwright_api.async_playwright() as pw):
