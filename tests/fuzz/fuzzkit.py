@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import threading
-from collections.abc import AsyncIterator, Awaitable, Callable, Iterator
+from collections.abc import Awaitable, Callable, Iterator
 from contextlib import AbstractAsyncContextManager, contextmanager
 from typing import Any, TypeVar
 
@@ -48,6 +48,13 @@ class LoopThread:
         return asyncio.run_coroutine_threadsafe(bounded_call(), self.loop).result()
 
     def close(self) -> None:
+        async def cancel_the_rest() -> None:
+            rest = [t for t in asyncio.all_tasks() if t is not asyncio.current_task()]
+            for task in rest:
+                task.cancel()
+            await asyncio.gather(*rest, return_exceptions=True)
+
+        asyncio.run_coroutine_threadsafe(cancel_the_rest(), self.loop).result(timeout=10)
         self.loop.call_soon_threadsafe(self.loop.stop)
         self._thread.join(timeout=10)
         self.loop.close()
@@ -93,7 +100,3 @@ def serving(factory: Callable[[], AbstractAsyncContextManager[T]]) -> Iterator[t
             loop.run(stop(), bound_s=30)
         finally:
             loop.close()
-
-
-async def aiter_all(it: AsyncIterator[T]) -> list[T]:
-    return [x async for x in it]

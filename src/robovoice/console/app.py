@@ -39,6 +39,7 @@ from starlette.websockets import WebSocket, WebSocketDisconnect
 
 from robovoice.console.service import Console
 from robovoice.mcp_server.http import LOOPBACK_NAMES, HttpGuard, is_wildcard
+from robovoice.mcp_server.limits import BodyLimits
 
 COOKIE = "robovoice_console_token"
 LOGIN_PATH = "/login"
@@ -246,7 +247,7 @@ def build_console_app(console: Console, *, host: str = "127.0.0.1", token: str |
         WebSocketRoute("/ws/audio", audio),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
-    app = Starlette(routes=routes)
+    app = BodyLimits(Starlette(routes=routes), jsonrpc=False)  # 413 / 400 before a body is buffered or parsed
     extra = frozenset(allowed_hosts)
     any_host = is_wildcard(host) and token is not None and not extra
     guard = ConsoleGuard(app, allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token, any_host=any_host)

@@ -37,6 +37,7 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 from robovoice.config import read_secret_file
 from robovoice.errors import ConfigError
 from robovoice.mcp_server._groups import owned_tasks
+from robovoice.mcp_server.limits import BodyLimits
 from robovoice.mcp_server.server import RobotToolServer
 from robovoice.mcp_server.sse_deferral import DeferSse
 from robovoice.mcp_server.tcp import listen_tcp
@@ -157,7 +158,8 @@ def build_http_app(server: RobotToolServer, *, host: str = "127.0.0.1", token: s
     app = Starlette(routes=[Route(path, endpoint=StreamableHTTPASGIApp(manager))], lifespan=lifespan)
     extra = frozenset(allowed_hosts)
     any_host = is_wildcard(host) and token is not None and not extra
-    return HttpGuard(DeferSse(app), allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token, any_host=any_host)
+    return HttpGuard(BodyLimits(DeferSse(app)), allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token,
+                     any_host=any_host)
 
 
 @dataclass(frozen=True, slots=True)
