@@ -19,6 +19,7 @@ included, becomes ``%XX`` of its UTF-8 bytes), so any name maps to exactly one c
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from urllib.parse import quote, unquote
 
 ROOT = "robovoice"
@@ -26,8 +27,10 @@ PROTOCOL_VERSION = 1
 """Bumped when the layout or the payloads change incompatibly (sent in every NodeInfo)."""
 
 
+@lru_cache(maxsize=4096)
 def escape(name: str) -> str:
-    """One key chunk for `name` (see the module docstring)."""
+    """One key chunk for `name` (see the module docstring). Cached: every call builds its
+    key from a few names, and ``quote`` is a visible part of an RPC's cost."""
     if not name:
         raise ValueError("an empty name cannot be a Zenoh key chunk")
     return quote(name, safe="")

@@ -59,18 +59,19 @@ class Exchange:
     async def next(self) -> Item:
         return await self._items.get()
 
-    def on_reply(self, reply: zenoh.Reply) -> None:
-        sample = reply.ok
-        if sample is not None:
-            attachment = sample.attachment
-            self.push(Answer(True, sample.payload.to_bytes(),
-                             None if attachment is None else attachment.to_bytes()))
-            return
-        error = reply.err
-        self.push(Answer(False, b"" if error is None else error.payload.to_bytes()))
 
-    def on_finished(self) -> None:
-        self.push(Finished())
+def answer_of(reply: zenoh.Reply) -> Answer:
+    """A reply as plain bytes (run on Zenoh's thread: no Zenoh object reaches the loop)."""
+    sample = reply.ok
+    if sample is not None:
+        attachment = sample.attachment
+        return Answer(True, sample.payload.to_bytes(), None if attachment is None else attachment.to_bytes())
+    error = reply.err
+    return Answer(False, b"" if error is None else error.payload.to_bytes())
+
+
+JSON_ENCODING = zenoh.Encoding(ENCODING)
+"""Parsed once, not per call."""
 
 
 def send_query(
@@ -86,16 +87,17 @@ def send_query(
     """Send ``GET key?parameters`` with `args` as JSON; replies go to `exchange`.
 
     Zenoh's own timeout is a little longer than the caller's, so the caller's deadline
-    decides and Zenoh only cleans up. Raises `TypeError`/`ValueError` for arguments JSON
-    cannot carry, `zenoh.ZError` when the session is closed.
+    decides and Zenoh only cleans up. Each reply reaches `exchange` with one loop wake-up;
+    `Finished` comes only when the query ended without any reply. Raises `TypeError`/
+    `ValueError` for arguments JSON cannot carry, `zenoh.ZError` when the session is closed.
     """
     payload = None if args is None else encode(dict(args))
     selector = zenoh.Selector(key, dict(parameters)) if parameters else key
     session.get(
         selector,
-        bridge.handler(exchange.on_reply, exchange.on_finished),
+        bridge.replies(answer_of, exchange.push, lambda: exchange.push(Finished())),
         payload=payload,
-        encoding=ENCODING if payload is not None else None,
+        encoding=JSON_ENCODING if payload is not None else None,
         consolidation=zenoh.ConsolidationMode.NONE,
         timeout=timeout + 1.0,
     )
