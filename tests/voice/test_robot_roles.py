@@ -232,3 +232,55 @@ async def test_an_acknowledgement_is_withdrawn_when_its_tool_fails_at_once(
     assert finished.result is not None and finished.result.outcomes[0].error == "unknown_target"
     spoken = [e.text for e in s.log.of(SentenceSpoken)]
     assert spoken == ["I don't know where the garage is."], "'On my way to the garage.' is never said"
+
+
+class _ChangingTools:
+    """A robot whose tool list changes (a node joins or leaves): a new list object each time."""
+
+    def __init__(self, sections: dict[str, VoiceDecl]) -> None:
+        self.sections = sections
+        self._listed: list[ToolSpec] = []
+        self.lists = 0
+
+    def change(self, sections: dict[str, VoiceDecl]) -> None:
+        self.sections = sections
+        self._listed = []
+
+    async def specs(self) -> list[ToolSpec]:
+        if not self._listed:
+            self.lists += 1
+            self._listed = [ToolSpec(name, name, {"type": "object"}) for name in self.sections]
+        return self._listed
+
+    def voice(self) -> Mapping[str, VoiceDecl]:
+        return self.sections
+
+    async def call(self, name: str, arguments: dict[str, Any], on_progress: ProgressCallback | None = None
+                   ) -> ToolOutcome:
+        return ToolOutcome("{}", False, 0.0)
+
+
+async def test_roles_follow_the_tool_list_and_a_missing_stop_tool_is_named(
+    backend: OpenAICompatBackend, caplog: pytest.LogCaptureFixture
+) -> None:
+    from robovoice.voice.pipeline import VoicePipeline
+    from robovoice.voice.room import SimulatedRoom
+
+    tools = _ChangingTools({"halt": VoiceDecl(role="stop"), "drive": VoiceDecl(role="motion"),
+                            "where": VoiceDecl(role="pose")})
+    room = SimulatedRoom()
+    pipeline = VoicePipeline(fake_models(), backend, tools, source=room.mic, sink=room.speaker)
+    await pipeline.refresh_tools()
+    assert (pipeline.roles.stop, pipeline.roles.motion, pipeline.roles.pose) == ("halt", {"drive"}, "where")
+    assert pipeline.stopper.roles is pipeline.roles and pipeline.commands.roles is pipeline.roles
+    assert pipeline.motion.probe is not None and pipeline.motion.probe.tool == "where"
+    assert "halt" in pipeline.hint
+    await pipeline.refresh_tools()
+    assert tools.lists == 1, "an unchanged list is not fetched or rebuilt again"
+    with caplog.at_level(logging.WARNING, logger="robovoice.voice.pipeline"):
+        tools.change({"drive": VoiceDecl(role="motion")})  # the base node left
+        await pipeline.refresh_tools()
+    assert pipeline.roles.stop is None and pipeline.stopper.roles.stop is None
+    assert NO_STOP_WARNING in caplog.text
+    assert pipeline.motion.probe is None
+    room.close()
