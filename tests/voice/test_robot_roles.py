@@ -271,7 +271,7 @@ async def test_roles_follow_the_tool_list_and_a_missing_stop_tool_is_named(
     room = SimulatedRoom()
     pipeline = VoicePipeline(fake_models(), backend, tools, source=room.mic, sink=room.speaker)
     await pipeline.refresh_tools()
-    assert (pipeline.roles.stop, pipeline.roles.motion, pipeline.roles.pose) == ("halt", {"drive"}, "where")
+    assert (pipeline.roles.stop, pipeline.roles.motion, pipeline.roles.pose) == ("halt", frozenset({"drive"}), "where")
     assert pipeline.stopper.roles is pipeline.roles and pipeline.commands.roles is pipeline.roles
     assert pipeline.motion.probe is not None and pipeline.motion.probe.tool == "where"
     assert "halt" in pipeline.hint
