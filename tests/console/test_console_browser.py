@@ -125,6 +125,7 @@ async def test_a_spoken_command_through_the_fake_microphone_drives_the_robot(
             await page.fill("#say-text", "and now please go to the kitchen again")
             await page.click("#say-form button")
             await page.wait_for_selector(".turn.typed .latency", timeout=STEP_MS)
+            await page.wait_for_selector(".turn.typed audio[src='/api/answers/typed-2.wav']", timeout=STEP_MS)
             await page.screenshot(path=str(tmp_path / "console.png"), full_page=True)
             assert errors == []
         finally:

@@ -7,7 +7,7 @@ server's guard (`robovoice.mcp_server.http.HttpGuard`: Host/Origin allow-list, b
     GET  /api/tools         every tool, with its JSON Schema and annotations
     POST /api/call          {"name": ..., "arguments": {...}} -> the tool's result
     GET  /api/audit         ?tool=NAME&errors=true|false&limit=N, newest first
-    GET  /api/answers/N.wav the robot's spoken answer of voice turn N
+    GET  /api/answers/N.wav the robot's spoken answer of voice turn N (typed-N.wav: typed turn N)
     WS   /ws/events         live: conversation events, robot state, audit records
     WS   /ws/audio          up: 16 kHz mono int16 PCM and {"type": "ptt"}; down: the robot's voice
 
@@ -169,7 +169,8 @@ def build_console_app(console: Console, *, host: str = "127.0.0.1", token: str |
 
     async def answer(request: Request) -> Response:
         turn = request.path_params["turn"]
-        path = console.voice.answer_path(turn) if console.voice is not None else None
+        typed = request.url.path.startswith("/api/answers/typed-")
+        path = console.voice.answer_path(turn, typed=typed) if console.voice is not None else None
         if path is None or not path.is_file():
             return JSONResponse({"error": "not_found", "message": f"no spoken answer for voice turn {turn}"},
                                 status_code=404)
@@ -242,6 +243,7 @@ def build_console_app(console: Console, *, host: str = "127.0.0.1", token: str |
         Route("/api/call", call, methods=["POST"]),
         Route("/api/audit", audit),
         Route("/api/answers/{turn:int}.wav", answer),
+        Route("/api/answers/typed-{turn:int}.wav", answer),
         Route(LOGIN_PATH, login, methods=["GET", "POST"]),
         WebSocketRoute("/ws/events", events),
         WebSocketRoute("/ws/audio", audio),

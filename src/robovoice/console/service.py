@@ -158,13 +158,14 @@ class Console:
 
             try:
                 result = await self.assistant.turn(text, observer=observe)
+                answer = await self.voice.typed_answer(record.id) if speech is not None and self.voice else None
             except BaseException:
                 self.hub.close_turn(record)
                 raise
-            self.hub.close_turn(record, result.metrics.as_dict())
+            self.hub.close_turn(record, result.metrics.as_dict(), answer)
             return {"turn": record.id, "text": text, "reply": result.reply, "fell_back": result.fell_back,
                     "calls": [{"name": c.name, "arguments": jsonable(c.arguments)} for c in result.calls],
-                    "events": list(record.events), "latency_ms": record.latency_ms}
+                    "events": list(record.events), "latency_ms": record.latency_ms, "answer": answer}
 
     # --- tools by hand -----------------------------------------------------------------
 

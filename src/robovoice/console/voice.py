@@ -170,8 +170,22 @@ class VoiceBridge:
         return {"state": self._state, "detail": self._detail, "connected": self._holder is not None,
                 "heard_s": round(self.mic.stream_time, 1), "spoken_s": round(self.speaker.sent_s, 1)}
 
-    def answer_path(self, turn: int) -> Path:
-        return self.answers_dir / f"turn-{turn:02d}.wav"
+    def answer_path(self, turn: int, *, typed: bool = False) -> Path:
+        return self.answers_dir / (f"typed-{turn:02d}.wav" if typed else f"turn-{turn:02d}.wav")
+
+    async def typed_answer(self, turn: int, timeout_s: float = 120.0) -> str | None:
+        """Once a typed turn's answer has been spoken (`Console.say` has the pipeline say it),
+        keep it as that turn's WAV; its URL (None: nothing was spoken)."""
+        from robovoice.audio.wav import write_wav
+
+        if self.pipeline is None:
+            return None
+        await self.pipeline.speech.idle(timeout=timeout_s)
+        audio = self.pipeline.speech.take_recording(None)  # typed answers are spoken outside any voice turn
+        if audio is None:
+            return None
+        await asyncio.to_thread(write_wav, self.answer_path(turn, typed=True), audio)
+        return f"/api/answers/typed-{turn}.wav"
 
     async def _observe(self, event: object) -> None:
         if self._hub is None:
