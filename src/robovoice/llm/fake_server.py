@@ -44,6 +44,10 @@ log = logging.getLogger(__name__)
 # --- the script ---------------------------------------------------------------------
 
 
+class StreamCut(ConnectionResetError):
+    """Raised inside a streamed response to reset the connection mid-body (`Pacing.cut_hard`)."""
+
+
 @dataclass(frozen=True, slots=True)
 class Pacing:
     """When chunks go out. Stalls end early when the server shuts down."""
@@ -53,6 +57,8 @@ class Pacing:
     stall_after_chunks: int | None = None  # stall after this many token chunks ...
     stall_s: float = 0.0  # ... for this long (mid-stream stall)
     chunk_interval_s: float = 0.0  # between token chunks
+    cut_after_chunks: int | None = None  # the server closes the stream after this many token chunks ...
+    cut_hard: bool = False  # ... without the final chunk and [DONE]; hard: the connection is reset mid-body
 
 
 @dataclass(frozen=True, slots=True)
@@ -338,6 +344,10 @@ class FakeOpenAIServer:
         yield chunk({"role": "assistant", "content": ""})
         await self._pause(pacing.first_token_delay_s)
         for sent, delta in enumerate(deltas):
+            if pacing.cut_after_chunks is not None and sent == pacing.cut_after_chunks:
+                if pacing.cut_hard:
+                    raise StreamCut(f"fake server: stream reset after {sent} chunks (scripted)")
+                return
             if pacing.stall_after_chunks is not None and sent == pacing.stall_after_chunks:
                 await self._pause(pacing.stall_s)
             elif sent:
