@@ -266,3 +266,38 @@ async def test_client_mode_through_a_router(port: int) -> None:
         await client.close()
         await node.close()
         await router.close()
+
+
+async def test_the_node_answers_timeout_when_its_rpc_overruns_the_callers_deadline(
+        port: int, nodes: ZenohMiddleware) -> None:
+    """The node stops a handler at the ``timeout`` the query carries and says so (a raw
+    client that waits longer than that deadline sees the node's own timeout reply)."""
+    stopped = asyncio.Event()
+
+    async def stuck(args: dict[str, JSON]) -> JSON:
+        try:
+            await asyncio.Event().wait()
+        except asyncio.CancelledError:
+            stopped.set()
+            raise
+        return None
+
+    await nodes.host(NodeInfo("slow", rpcs=(RpcInfo("stuck"),)), {"stuck": stuck}, {})
+    config = zenoh.Config()
+    config.insert_json5("scouting/multicast/enabled", "false")
+    config.insert_json5("connect/endpoints", json.dumps([f"tcp/127.0.0.1:{port}"]))
+    raw = await asyncio.to_thread(zenoh.open, config)
+    try:
+        async with asyncio.timeout(BOUND_S):
+            while True:  # until the new session knows the node's queryable (no reply at all before)
+                replies = await asyncio.to_thread(lambda: list(
+                    raw.get("robovoice/t/node/slow/rpc/stuck?timeout=0.2", payload=b"{}", timeout=BOUND_S)))
+                if replies:
+                    break
+    finally:
+        close_session(raw)
+    assert stopped.is_set()
+    errors = [reply.err for reply in replies if reply.err is not None]
+    assert len(errors) == 1
+    body = json.loads(errors[0].payload.to_bytes())
+    assert body["error"] == "timeout" and "did not finish within its timeout" in body["message"]

@@ -71,7 +71,7 @@ async def test_an_answered_query_posts_once_with_plain_bytes(session: zenoh.Sess
         undeclare(queryable)
     assert item == Answer(True, b'{"x":1}', None) and type(item.payload) is bytes
     assert bridge.posts == 1  # the reply only: the end of an answered query wakes nobody
-    assert exchange._items.empty()
+    assert exchange.pending() == 0
 
 
 async def test_an_unanswered_query_ends_with_finished(session: zenoh.Session) -> None:

@@ -254,8 +254,7 @@ class ZenohMiddleware:
         try:
             self._send(exchange, self._layout.rpc(node, rpc), args, timeout, {"timeout": f"{timeout:g}"})
             try:
-                async with asyncio.timeout(timeout):
-                    item = await exchange.next()
+                item = await exchange.next(timeout)
             except TimeoutError:
                 raise self._timed_out(node, rpc, timeout) from None
         finally:

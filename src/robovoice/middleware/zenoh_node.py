@@ -187,9 +187,12 @@ class ZenohNodeHost:
             failure: RobotFailure | None = None
             try:
                 args = _arguments(query, where)
-                timeout = _timeout(query)
-                async with asyncio.timeout(timeout):
+                timer = self._deadline(_timeout(query), where, name)
+                try:
                     payload = encode(await work(args, count))
+                finally:
+                    if timer is not None:
+                        timer.cancel()
             except asyncio.CancelledError:
                 current = asyncio.current_task()
                 failure = self._reasons.get(current) if current is not None else None
@@ -215,6 +218,18 @@ class ZenohNodeHost:
             if goal_id is not None:
                 self._goals.pop(goal_id, None)
             finish(query)
+
+    def _deadline(self, timeout: float | None, where: str, name: str) -> asyncio.TimerHandle | None:
+        """Cancel the current task with a `CallTimeoutError` reason after `timeout` seconds
+        (cheaper than ``asyncio.timeout`` on the path of every RPC; the reason is replied)."""
+        task = asyncio.current_task()
+        if timeout is None or task is None:
+            return None
+        return asyncio.get_running_loop().call_later(timeout, self._time_out, task, where, name)
+
+    def _time_out(self, task: asyncio.Task[None], where: str, name: str) -> None:
+        self._cancel(task, CallTimeoutError(f"{where} did not finish within its timeout",
+                                            details={"node": self._info.name, "rpc": name}))
 
     # --- cancellation --------------------------------------------------------------------
     def _on_cancel(self, sample: zenoh.Sample) -> None:

@@ -8,6 +8,7 @@ event loop (through `LoopBridge`). The caller awaits `next()` under its own time
 from __future__ import annotations
 
 import asyncio
+import collections
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -46,18 +47,46 @@ Item = Answer | Finished | NodeGone | Closed | Feedback
 
 
 class Exchange:
-    """One query to one node (see the module docstring)."""
+    """One query to one node (see the module docstring). Items wait in a deque; the caller
+    waits on one future at a time (cheaper than an `asyncio.Queue` plus `asyncio.timeout`
+    on the hot path of every RPC)."""
 
     def __init__(self, node: str, goal_id: str | None = None) -> None:
         self.node = node
         self.goal_id = goal_id
-        self._items: asyncio.Queue[Item] = asyncio.Queue()
+        self._items: collections.deque[Item] = collections.deque()
+        self._waiter: asyncio.Future[Item] | None = None
 
     def push(self, item: Item) -> None:
-        self._items.put_nowait(item)
+        waiter = self._waiter
+        if waiter is not None and not waiter.done():
+            waiter.set_result(item)
+        else:
+            self._items.append(item)
 
-    async def next(self) -> Item:
-        return await self._items.get()
+    def pending(self) -> int:
+        """Items that arrived and were not taken yet."""
+        return len(self._items)
+
+    async def next(self, timeout: float | None = None) -> Item:
+        """The next item; `TimeoutError` if none comes within `timeout` seconds."""
+        if self._items:
+            return self._items.popleft()
+        loop = asyncio.get_running_loop()
+        waiter: asyncio.Future[Item] = loop.create_future()
+        self._waiter = waiter
+        timer = None if timeout is None else loop.call_later(timeout, _expire, waiter)
+        try:
+            return await waiter
+        finally:
+            self._waiter = None
+            if timer is not None:
+                timer.cancel()
+
+
+def _expire(waiter: asyncio.Future[Item]) -> None:
+    if not waiter.done():
+        waiter.set_exception(TimeoutError())
 
 
 def answer_of(reply: zenoh.Reply) -> Answer:
