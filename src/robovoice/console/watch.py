@@ -50,6 +50,7 @@ WATCHED: tuple[Watched, ...] = (
 )
 MAX_PATH_POINTS = 2000
 CALL_TIMEOUT_S = 5.0
+TOOLS_REFRESH_S = 10.0
 
 
 def snapshot_value(result: types.CallToolResult) -> Any:
@@ -123,10 +124,17 @@ class RobotWatcher:
         self._moving = moving
 
     async def run(self) -> None:
-        await self.refresh_tools()
         due = dict.fromkeys((w.key for w in self._watched), 0.0)
+        tools_due = 0.0
         while True:
             now = time.monotonic()
+            if now >= tools_due:  # nodes come and go: which tools there are is looked at again now and then
+                tools_due = now + TOOLS_REFRESH_S
+                try:
+                    await self.refresh_tools()
+                    self._errors.pop("tools", None)
+                except Exception as exc:  # the robot unreachable for now: said on the page, tried again
+                    self._errors["tools"] = str(exc) or type(exc).__name__
             batch = [w for w in self._watched
                      if w.tool in self.available and now >= due[w.key] and (not w.when_watched or self._watching())]
             for w in batch:
