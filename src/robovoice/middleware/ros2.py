@@ -25,6 +25,8 @@ except ImportError as exc:  # pragma: no cover - depends on the install
 
 import asyncio
 
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
 from robovoice.manifest import format_error, load_manifest_dir
 from robovoice.manifest.errors import ManifestErrors
 from robovoice.middleware.base import (
@@ -41,6 +43,7 @@ from robovoice.middleware.ros2_bindings import NodeBinding, compile_manifest
 from robovoice.middleware.ros2_bridge import RosBridge
 from robovoice.middleware.ros2_calls import Ros2Calls
 from robovoice.middleware.ros2_config import Ros2Settings
+from robovoice.middleware.ros2_host import ANNOUNCE_TOPIC, Ros2NodeHost, info_from_json
 from robovoice.middleware.ros2_presence import GraphPresence, PresenceWatch
 from robovoice.middleware.ros2_topics import TopicSubscription, subscribe_topic
 
@@ -100,7 +103,23 @@ class Ros2Middleware:
         self._presence = GraphPresence(self._bridge, self._bindings)
         self._presence.start()
         self._calls = Ros2Calls(self._bridge, self._presence)
+        self._announcements = self._listen(self._bridge, self._presence)
         await self._discover(self._presence)
+
+    def _listen(self, bridge: RosBridge, presence: GraphPresence) -> Any:
+        """Hosted robovoice nodes' announcements (latched): each one a node that may join."""
+        from std_msgs.msg import String
+
+        def heard(msg: Any) -> None:  # on the executor thread
+            try:
+                info = info_from_json(msg.data)
+            except (ValueError, KeyError, TypeError):
+                log.warning("a malformed announcement on %s", ANNOUNCE_TOPIC)
+                return
+            bridge.post(presence.announce, info)
+
+        qos = QoSProfile(depth=100, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE)
+        return bridge.node.create_subscription(String, ANNOUNCE_TOPIC, heard, qos, callback_group=bridge.group)
 
     async def _discover(self, presence: GraphPresence) -> None:
         """Give DDS discovery a moment (typically 0.1 s, at worst seconds) to find the nodes
@@ -132,12 +151,18 @@ class Ros2Middleware:
     # --- node side ------------------------------------------------------------------------
     async def host(self, info: NodeInfo, rpcs: Mapping[str, RpcHandler],
                    actions: Mapping[str, ActionHandler]) -> NodeHost:
-        raise ConfigError(
-            f"{self.uri}: robovoice does not host its own nodes on ROS 2; run the robot's ROS 2 nodes "
-            "and bind them with a manifest folder (ros2://?manifests=DIR, docs/ros2.md)"
-        )
+        """Serve a robovoice node (the sim's) as a ROS 2 node with JSON interfaces (`ros2_host`)."""
+        bridge, _, _ = self._running()
+        return Ros2NodeHost(bridge, info, rpcs, actions)
 
     # --- client side ----------------------------------------------------------------------
+    def _hosted(self, node: str, rpc: str) -> None:
+        info = self.nodes().get(node)
+        if info is None or info.rpc(rpc) is None:
+            raise NodeUnavailableError(
+                f"node {node!r} is not available" if info is None else f"node {node!r} has no RPC {rpc!r}",
+                hint="the robot part is offline; tell the user", details={"node": node, "rpc": rpc})
+
     def _binding(self, node: str, rpc: str) -> Any:
         _, presence, _ = self._running()
         found = self._bindings.get(node)
@@ -149,11 +174,19 @@ class Ros2Middleware:
         return binding
 
     async def call(self, node: str, rpc: str, args: Mapping[str, JSON], *, timeout: float) -> JSON:
+        _, presence, calls = self._running()
+        if presence.is_hosted(node):
+            self._hosted(node, rpc)
+            return await calls.call_json(node, rpc, args, timeout=timeout)
         binding = self._binding(node, rpc)
         return await self._running()[2].call(node, binding, args, timeout=timeout)
 
     async def run_action(self, node: str, action: str, args: Mapping[str, JSON], *,
                          on_feedback: FeedbackSender, timeout: float) -> JSON:
+        _, presence, calls = self._running()
+        if presence.is_hosted(node):
+            self._hosted(node, action)
+            return await calls.run_json(node, action, args, on_feedback=on_feedback, timeout=timeout)
         binding = self._binding(node, action)
         return await self._running()[2].run_action(node, binding, args, on_feedback=on_feedback,
                                                    timeout=timeout)
@@ -162,6 +195,13 @@ class Ros2Middleware:
         bridge, _, _ = self._running()
         snapshot = next((n.snapshots[topic] for n in self._bindings.values() if topic in n.snapshots), None)
         return subscribe_topic(bridge, topic, snapshot, callback)
+
+    def graph_actions(self) -> list[tuple[str, list[str]]]:
+        """The action servers in the ROS graph now, with their types (as `ros2 action list -t`)."""
+        from rclpy.action.graph import get_action_names_and_types
+
+        bridge, _, _ = self._running()
+        return [(name, list(types)) for name, types in get_action_names_and_types(bridge.node)]
 
     def nodes(self) -> Mapping[str, NodeInfo]:
         if self._presence is None:

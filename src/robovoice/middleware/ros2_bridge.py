@@ -27,12 +27,14 @@ from robovoice.middleware.ros2_config import Ros2Settings, fastdds_profile
 import rclpy  # isort: skip  # after the guarded import in ros2.py
 from rclpy.callback_groups import ReentrantCallbackGroup
 from rclpy.context import Context
-from rclpy.executors import SingleThreadedExecutor
+from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.task import Future
 
 log = logging.getLogger(__name__)
 
+HOST_THREADS = 8
+"""Threads for hosted nodes' callbacks: each running call or action holds one."""
 _ENV_LOCK = threading.Lock()
 _names = itertools.count(1)
 
@@ -92,11 +94,20 @@ class RosBridge:
             except Exception as exc:
                 self.context.try_shutdown()
                 raise MiddlewareError(f"{settings.uri}: cannot create the ROS 2 node: {exc}") from exc
+        self._host_executor: MultiThreadedExecutor | None = None
         self.group = ReentrantCallbackGroup()
         self._executor = SingleThreadedExecutor(context=self.context)
         self._executor.add_node(self.node)
         self._thread = threading.Thread(target=self._spin, name="robovoice-rclpy", daemon=True)
         self._thread.start()
+
+    def host_executor(self) -> MultiThreadedExecutor:
+        """The executor of the nodes hosted here (`ros2_host`), started on first use: its
+        callbacks wait for handlers on the event loop, so they get threads of their own."""
+        if self._host_executor is None:
+            self._host_executor = MultiThreadedExecutor(num_threads=HOST_THREADS, context=self.context)
+            threading.Thread(target=self._host_executor.spin, name="robovoice-rclpy-host", daemon=True).start()
+        return self._host_executor
 
     def _spin(self) -> None:
         try:
@@ -137,6 +148,8 @@ class RosBridge:
         if self._closed:
             return
         self._closed = True
+        if self._host_executor is not None:
+            self._host_executor.shutdown(timeout_sec=2.0)
         self._executor.shutdown(timeout_sec=2.0)
         try:
             self.node.destroy_node()

@@ -11,15 +11,19 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import itertools
+import json
 import logging
+import math
 import time
 from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 from robovoice.errors import CallTimeoutError, CancelledByRobotError, NodeUnavailableError, RobotFailure
 from robovoice.middleware.base import JSON, Feedback, FeedbackSender
 from robovoice.middleware.ros2_bindings import ToolBinding
 from robovoice.middleware.ros2_bridge import RosBridge
+from robovoice.middleware.ros2_host import interfaces, rpc_name
 from robovoice.middleware.ros2_presence import GraphPresence
 from robovoice.middleware.ros2_types import to_json
 
@@ -74,7 +78,7 @@ class Ros2Calls:
             self._actions[key] = client
         return client
 
-    async def _await(self, waiter: asyncio.Future[Any], up: Any, node: str, binding: ToolBinding,
+    async def _await(self, waiter: asyncio.Future[Any], up: Any, node: str, binding: ToolBinding | _Plain,
                      deadline: float, what: str) -> Any:
         """Wait for `waiter` until `deadline`, failing early when the server leaves the graph."""
         while True:
@@ -90,6 +94,79 @@ class Ros2Calls:
                 raise NodeUnavailableError(
                     f"{binding.ros_name} went away before answering ({what})",
                     hint="the robot part went offline; tell the user", details={"node": node, "rpc": binding.key})
+
+    # --- robovoice nodes hosted on ROS 2 (ros2_host): JSON in, JSON out ---------------------------
+    async def call_json(self, node: str, rpc: str, args: Mapping[str, JSON], *, timeout: float) -> JSON:
+        call_type, _ = interfaces()
+        target = _Plain(rpc_name(node, rpc), rpc, call_type)
+        client = self._plain_client(target)
+        deadline = time.monotonic() + timeout
+        future = client.call_async(call_type.Request(arguments=json.dumps(dict(args), default=str)))
+        waiter = self._bridge.wait(future)
+        try:
+            response = await self._await(waiter, self._presence.service_up, node, target, deadline, "call")
+        except BaseException:
+            waiter.cancel()
+            client.remove_pending_request(future)
+            raise
+        return _json_outcome(response.result, response.error)
+
+    async def run_json(self, node: str, action: str, args: Mapping[str, JSON], *, on_feedback: FeedbackSender,
+                       timeout: float) -> JSON:
+        _, run_type = interfaces()
+        target = _Plain(rpc_name(node, action), action, run_type)
+        client = self._plain_action(target)
+        deadline = time.monotonic() + timeout
+        feedback: asyncio.Queue[Feedback] = asyncio.Queue(maxsize=256)
+
+        def arrived(message: Any) -> None:  # on the executor thread
+            fb = message.feedback
+            total = None if math.isnan(fb.total) else fb.total
+            item = Feedback(fb.progress, total, fb.message, json.loads(fb.data or "{}"))
+            self._bridge.post(_offer, feedback, item)
+
+        send = client.send_goal_async(run_type.Goal(arguments=json.dumps(dict(args), default=str)),
+                                      feedback_callback=arrived)
+        handle = await self._await(self._bridge.wait(send), self._presence.action_up, node, target, deadline, "goal")
+        relay = asyncio.get_running_loop().create_task(_relay_plain(feedback, on_feedback))
+        result_waiter = self._bridge.wait(handle.get_result_async())
+        try:
+            outcome = await self._await(result_waiter, self._presence.action_up, node, target, deadline, "result")
+        except NodeUnavailableError:
+            result_waiter.cancel()
+            raise
+        except BaseException:
+            result_waiter.cancel()
+            await self._cancel(handle)
+            raise
+        finally:
+            relay.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await relay
+        while not feedback.empty():
+            await _tell_plain(on_feedback, feedback.get_nowait())
+        return _json_outcome(outcome.result.result, outcome.result.error)
+
+    def _plain_client(self, target: _Plain) -> Client[Any, Any]:
+        key = (target.ros_name, "robovoice_msgs/srv/Call")
+        client = self._clients.get(key)
+        if client is None:
+            client = self._bridge.node.create_client(target.interface, target.ros_name,
+                                                     qos_profile=QoSProfile(depth=QUEUE_DEPTH),
+                                                     callback_group=self._bridge.group)
+            self._clients[key] = client
+        return client
+
+    def _plain_action(self, target: _Plain) -> ActionClient[Any, Any, Any]:
+        key = (target.ros_name, "robovoice_msgs/action/Run")
+        client = self._actions.get(key)
+        if client is None:
+            qos = QoSProfile(depth=QUEUE_DEPTH)
+            client = ActionClient(self._bridge.node, target.interface, target.ros_name,
+                                  callback_group=self._bridge.group, goal_service_qos_profile=qos,
+                                  result_service_qos_profile=qos, cancel_service_qos_profile=qos)
+            self._actions[key] = client
+        return client
 
     async def call(self, node: str, binding: ToolBinding, args: Mapping[str, JSON], *, timeout: float) -> JSON:
         request = binding.build_request(args)  # checked before anything is sent
@@ -154,7 +231,34 @@ class Ros2Calls:
             log.info("cancelling the goal failed: %s", exc)
 
 
-def _offer(queue: asyncio.Queue[dict[str, JSON]], data: dict[str, JSON]) -> None:
+@dataclass(frozen=True, slots=True)
+class _Plain:
+    """A hosted node's RPC or action: its ROS name, robovoice name and interface type."""
+
+    ros_name: str
+    key: str
+    interface: Any
+
+
+def _json_outcome(result: str, error: str) -> JSON:
+    if error:
+        raise RobotFailure.from_dict(json.loads(error))
+    return json.loads(result) if result else None
+
+
+async def _relay_plain(queue: asyncio.Queue[Feedback], on_feedback: FeedbackSender) -> None:
+    while True:
+        await _tell_plain(on_feedback, await queue.get())
+
+
+async def _tell_plain(on_feedback: FeedbackSender, item: Feedback) -> None:
+    try:
+        await on_feedback(item)
+    except Exception:  # a failing progress report must not end the action
+        log.exception("feedback callback failed")
+
+
+def _offer(queue: asyncio.Queue[Any], data: Any) -> None:
     if queue.full():  # a slow consumer: keep the newest feedback
         queue.get_nowait()
     queue.put_nowait(data)

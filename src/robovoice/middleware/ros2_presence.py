@@ -17,6 +17,7 @@ from collections.abc import Callable, Mapping
 from robovoice.middleware.base import NodeInfo, NodeJoined, NodeLeft, PresenceEvent
 from robovoice.middleware.ros2_bindings import NodeBinding
 from robovoice.middleware.ros2_bridge import RosBridge
+from robovoice.middleware.ros2_host import rpc_name, topic_name
 
 log = logging.getLogger(__name__)
 
@@ -41,6 +42,8 @@ class GraphPresence:
         self._bridge = bridge
         self._bindings = bindings
         self._present: dict[str, NodeInfo] = {}
+        self._announced: dict[str, NodeInfo] = {}
+        """robovoice nodes hosted on ROS 2 (`ros2_host`), from their announcements."""
         self._watches: list[PresenceWatch] = []
         self._task: asyncio.Task[None] | None = None
         self._changed = asyncio.Event()
@@ -78,14 +81,36 @@ class GraphPresence:
                 and all(self.action_up(a) for a in binding.actions)
                 and all(self.topic_up(t) for t in binding.topics))
 
+    def _hosted_up(self, info: NodeInfo) -> bool:
+        return (all((self.action_up if r.kind == "action" else self.service_up)(rpc_name(info.name, r.name))
+                    for r in info.rpcs)
+                and all(self.topic_up(topic_name(t)) for t in info.topics))
+
+    def announce(self, info: NodeInfo) -> None:
+        """A hosted robovoice node announced itself (it counts once its interfaces are in the graph)."""
+        if info.name in self._bindings:
+            log.warning("a hosted node %r has the name of a manifest in the folder: the folder's wins", info.name)
+            return
+        old = self._announced.get(info.name)
+        self._announced[info.name] = info
+        if old is not None and old != info and info.name in self._present:  # changed: leave and join again
+            del self._present[info.name]
+            self._emit(NodeLeft(info.name))
+        self.poll()
+
+    def is_hosted(self, node: str) -> bool:
+        return node in self._announced and node not in self._bindings
+
     def poll(self) -> None:
         """Compare the graph with what was present; tell the watchers what changed."""
-        for name, binding in self._bindings.items():
-            up = self._up(binding)
+        candidates = [(name, b.info, self._up(b)) for name, b in self._bindings.items()]
+        candidates += [(name, info, self._hosted_up(info)) for name, info in self._announced.items()
+                       if name not in self._bindings]
+        for name, info, up in candidates:
             if up and name not in self._present:
-                self._present[name] = binding.info
+                self._present[name] = info
                 log.info("ROS 2 node %s joined", name)
-                self._emit(NodeJoined(binding.info))
+                self._emit(NodeJoined(info))
             elif not up and name in self._present:
                 del self._present[name]
                 log.info("ROS 2 node %s left", name)

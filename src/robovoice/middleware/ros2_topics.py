@@ -8,6 +8,7 @@ reliable and best-effort publishers, as sensor drivers often are).
 
 from __future__ import annotations
 
+import json
 import logging
 import threading
 import time
@@ -19,6 +20,7 @@ from robovoice.errors import ConfigError
 from robovoice.middleware.base import Message
 from robovoice.middleware.ros2_bindings import SnapshotBinding
 from robovoice.middleware.ros2_bridge import RosBridge
+from robovoice.middleware.ros2_host import topic_name
 from robovoice.middleware.ros2_types import import_type, stamp_of, to_json
 
 from rclpy.qos import QoSProfile, ReliabilityPolicy  # isort: skip
@@ -36,7 +38,7 @@ class TopicSubscription:
     """One rclpy subscription delivering converted messages to `callback` on the loop."""
 
     def __init__(self, bridge: RosBridge, topic: str, msg_type: Any, convert: Callable[[Any], Any],
-                 callback: Callable[[Message], None]) -> None:
+                 callback: Callable[[Message], None], *, ros_topic: str | None = None, hosted: bool = False) -> None:
         self._bridge = bridge
         self._topic = topic
         self._convert = convert
@@ -49,10 +51,14 @@ class TopicSubscription:
         self._interval = RAW_IMAGE_INTERVAL_S if raw_image else 0.0
         self._last = -float("inf")
         qos = QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT)
-        self._sub = bridge.node.create_subscription(msg_type, topic, self._receive, qos,
+        self._hosted = hosted
+        self._sub = bridge.node.create_subscription(msg_type, ros_topic or topic, self._receive, qos,
                                                     callback_group=bridge.group)
 
     def _receive(self, msg: Any) -> None:  # on the executor thread
+        if self._hosted:
+            self._receive_hosted(msg)
+            return
         if self._interval:
             now = time.monotonic()
             if now - self._last < self._interval:
@@ -66,6 +72,20 @@ class TopicSubscription:
             return
         with self._lock:
             self._pending.append(Message(self._topic, value, stamp))
+            if self._scheduled:
+                return
+            self._scheduled = True
+        self._bridge.post(self._deliver)
+
+    def _receive_hosted(self, msg: Any) -> None:
+        try:
+            body = json.loads(msg.data)
+            message = Message(self._topic, body["value"], float(body["stamp"]))
+        except (ValueError, KeyError, TypeError):
+            log.warning("not a robovoice JSON message on %s", self._topic)
+            return
+        with self._lock:
+            self._pending.append(message)
             if self._scheduled:
                 return
             self._scheduled = True
@@ -96,7 +116,12 @@ class TopicSubscription:
 
 def subscribe_topic(bridge: RosBridge, topic: str, binding: SnapshotBinding | None,
                     callback: Callable[[Message], None]) -> TopicSubscription:
-    """Subscribe with the manifest's type for `topic`, else the type the graph shows."""
+    """Subscribe with the manifest's type for `topic`, else the type the graph shows. A name
+    without a leading slash is a robovoice topic of a hosted node (`ros2_host`)."""
+    if not topic.startswith("/"):
+        from std_msgs.msg import String
+
+        return TopicSubscription(bridge, topic, String, to_json, callback, ros_topic=topic_name(topic), hosted=True)
     if binding is not None:
         return TopicSubscription(bridge, topic, binding.message, binding.value, callback)
     types = dict(bridge.node.get_topic_names_and_types()).get(topic)

@@ -1,0 +1,84 @@
+"""The simulated robot as real ROS 2 nodes: `robovoice sim --middleware ros2://…` in its own
+process, its tools through the MCP server on `ros2://` (no manifest folder: the nodes announce
+themselves), the same tools as the embedded sim, and a plain rclpy view of the graph."""
+
+from __future__ import annotations
+
+import asyncio
+import sys
+import time
+from pathlib import Path
+
+import mcp_types as types
+import pytest
+
+from robovoice.manifest import load_manifest_dir
+
+from .ros2_testkit import BOUND_S, RosWorld, body, serve, wait_tools
+
+pytestmark = pytest.mark.integration
+
+SIM_MANIFESTS = Path(__file__).resolve().parents[2] / "src" / "robovoice" / "sim" / "manifests"
+
+
+def sim_tools() -> set[str]:
+    loaded = load_manifest_dir(SIM_MANIFESTS)
+    names = {t.name for m in loaded.manifests.values() for t in m.manifest.tools}
+    return names | {s.name for m in loaded.manifests.values() for s in m.manifest.snapshots}
+
+
+async def test_the_sim_robot_on_ros2_serves_the_same_tools(ros: RosWorld) -> None:
+    sim = ros.spawn([sys.executable, "-m", "robovoice.cli", "sim", "--middleware", f"ros2://?domain_id={ros.domain}",
+                     "--speed", "10"])
+    await sim.ready("robovoice sim: ready", bound=30)
+    expected = sim_tools()
+    assert {"navigate_to", "get_battery_state", "start_video_call", "get_camera_image"} <= expected
+    async with serve(f"ros2://?domain_id={ros.domain}") as served:
+        await wait_tools(served, expected)
+        told: list[str | None] = []
+
+        async def on_progress(progress: float, total: float | None, message: str | None) -> None:
+            told.append(message)
+
+        drive = await served.client.call_tool("navigate_to", {"target": "kitchen"}, progress_callback=on_progress)
+        assert not drive.is_error and body(drive)["arrived"] == "kitchen"
+        assert told and told[-1] == "arrived at the kitchen"
+        balcony = await served.client.call_tool("navigate_to", {"target": "balcony"})
+        assert balcony.is_error and body(balcony)["error"] == "unreachable"
+        call = await served.client.call_tool("start_video_call", {"contact": "Anna"})
+        assert not call.is_error and body(call)["contact"] == "Anna"
+
+        async with asyncio.timeout(BOUND_S):
+            while body(pose := await served.client.call_tool("get_robot_pose", {})).get("value") is None:
+                await asyncio.sleep(0.05)
+        assert body(pose)["value"]["nearest_place"] == "kitchen"
+        async with asyncio.timeout(BOUND_S):
+            while not any(isinstance(b, types.ImageContent)
+                          for b in (await served.client.call_tool("get_camera_image", {})).content):
+                await asyncio.sleep(0.05)
+
+        started = asyncio.Event()
+
+        async def first(progress: float, total: float | None, message: str | None) -> None:
+            started.set()
+
+        long = asyncio.create_task(served.client.call_tool("navigate_to", {"target": "front door"},
+                                                           progress_callback=first))
+        await asyncio.wait_for(started.wait(), BOUND_S)
+        long.cancel()  # cancels the goal on the sim's ROS 2 action server, which stops the drive
+        with pytest.raises(asyncio.CancelledError):
+            await long
+        async with asyncio.timeout(BOUND_S):
+            while body(await served.client.call_tool("get_robot_pose", {}))["value"]["moving"]:
+                await asyncio.sleep(0.1)
+
+        # a plain rclpy view: the navigation is an action server, the battery a topic
+        actions = dict(served.middleware.graph_actions())
+        assert "robovoice_msgs/action/Run" in actions["/robovoice/navigation/drive_to"]
+
+        changes = served.notes.changes
+        sim.kill()
+        killed = time.monotonic()
+        await served.notes.wait_for(changes + 1)
+        await wait_tools(served, set())
+        assert time.monotonic() - killed < 6.0
