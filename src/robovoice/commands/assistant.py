@@ -4,11 +4,16 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import json
+import logging
 import sys
+import threading
 import time
 from pathlib import Path
 from typing import TextIO
+
+import anyio
 
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.events import (
@@ -29,6 +34,7 @@ from robovoice.commands.common import (
     robot_config_from_args,
     warm_up,
 )
+from robovoice.commands.signals import CancelOnSignals
 from robovoice.commands.text import one_line
 from robovoice.errors import ConfigError
 from robovoice.eval.cases import load_cases
@@ -102,7 +108,7 @@ async def _chat(args: argparse.Namespace) -> int:
             while True:
                 if interactive:
                     print("you> ", end="", flush=True)
-                line = await asyncio.to_thread(sys.stdin.readline)
+                line = await _read_line()
                 if not line:
                     break
                 if line.strip():
@@ -112,8 +118,40 @@ async def _chat(args: argparse.Namespace) -> int:
     return 0
 
 
+async def _read_line() -> str:
+    """One line of stdin, read in a daemon thread: a signal while waiting for input ends the
+    command at once (`asyncio.to_thread` would make the exit wait for the next line)."""
+    loop = asyncio.get_running_loop()
+    future: asyncio.Future[str] = loop.create_future()
+
+    def deliver(line: str) -> None:
+        if not future.done():
+            future.set_result(line)
+
+    def read() -> None:
+        line = sys.stdin.readline()
+        with contextlib.suppress(RuntimeError):  # the loop has closed meanwhile
+            loop.call_soon_threadsafe(deliver, line)
+
+    threading.Thread(target=read, name="chat-stdin", daemon=True).start()
+    return await future
+
+
 def run_chat(args: argparse.Namespace) -> int:
-    return asyncio.run(_chat(args))
+    async def until_signalled() -> int:
+        code = 0
+        with CancelOnSignals() as stop:  # SIGTERM/SIGINT: the turn under way (and its tool call) is cancelled
+            sdk_log = logging.getLogger("mcp.client.streamable_http")
+            # the SDK logs a traceback when an event arrives for a stream it is closing: not news after a signal
+            sdk_log.addFilter(lambda r: not (stop.signalled and r.exc_info
+                                             and r.exc_info[0] is anyio.BrokenResourceError))
+            code = await _chat(args)
+        if stop.signalled:
+            print("robovoice chat: stopped by a signal; the turn under way was cancelled, and with it any "
+                  "robot action it had started", file=sys.stderr, flush=True)
+        return code
+
+    return asyncio.run(until_signalled())
 
 
 def _print_case(result: CaseResult) -> None:
