@@ -64,6 +64,11 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     console.add_argument("--minutes", type=positive_float, default=10.0, help="how long (default 10)")
     console.set_defaults(run=_console)
 
+    load = sub.add_parser("load", help="N concurrent MCP clients over streamable HTTP, nodes joining and leaving")
+    load.add_argument("--clients", type=positive_int, default=50)
+    load.add_argument("--calls", type=positive_int, default=200, help="calls per client (default 200)")
+    load.set_defaults(run=_load)
+
 
 def _machine() -> dict[str, Any]:
     model = ""
@@ -140,3 +145,9 @@ def _console(args: argparse.Namespace) -> int:
     from robovoice.console.bench import bench_console
 
     return _print(asyncio.run(bench_console(args.minutes)))
+
+
+def _load(args: argparse.Namespace) -> int:
+    from robovoice.mcp_server.bench_load import bench_load
+
+    return _print(asyncio.run(bench_load(args.clients, args.calls)))
