@@ -24,7 +24,8 @@ async def test_the_report_says_what_reached_the_robot() -> None:
     cases = [
         case(id="lounge", text="Go to the lounge", expect=[{"tool": "navigate_to", "args": {"target": "living room"}}]),
         case(id="garage", text="Drive to the garage", expect=[], forbid=["navigate_to"]),
-        case(id="negated", text="Don't switch the projector on", expect=[], forbid=["set_projector_power"],
+        # a case that forbids what the text asks, so that the scripted call below is a false actuation
+        case(id="negated", text="Switch the projector on", expect=[], forbid=["set_projector_power"],
              **{"class": "negated"}),
         case(id="read-only", text="How is the battery?", expect=[], forbid=["get_battery_state"]),
     ]

@@ -26,6 +26,8 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
+from robovoice.assistant.gate import NOT_REQUESTED, refusal
+from robovoice.assistant.intent import Intent, read_request
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
@@ -114,15 +116,23 @@ class Assistant:
         user_message = ChatMessage("user", user)
         await emit(TurnStarted(user_message.text))
         messages = [ChatMessage("system", self.system_prompt), *self._history, user_message]
+        # audio to an audio model has no words to read; an answer to the robot's own question
+        # ("Which room?" - "The bedroom.") asks for what the question offered
+        answering = bool(self._history) and self._history[-1].text.rstrip().endswith("?")
+        intent = read_request(user, answering=answering) if isinstance(user, str) else None
+        asked = intent.steps if intent is not None else ()
+        max_steps = max(self.max_steps, len(asked) + 2)
+        if len(asked) > 1:  # a compound request: one thing at a time, in the order asked
+            messages.append(ChatMessage("user", f"One thing at a time, in order. First: {asked[0]}."))
         replies: list[str] = []
         calls: list[ToolCalled] = []
         outcomes: list[ToolReturned] = []
         fell_back = False
         steps = 0
-        for step in range(self.max_steps):
+        for step in range(max_steps):
             steps = step + 1
             # On the last step the model gets no tools, so the turn ends with words, not a call.
-            specs: list[ToolSpec] = await self.tools.specs() if step < self.max_steps - 1 else []
+            specs: list[ToolSpec] = await self.tools.specs() if step < max_steps - 1 else []
             try:
                 text, requested = await self._model_step(messages, specs, metrics, emit)
             except LLMError as exc:
@@ -137,11 +147,17 @@ class Assistant:
             messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
             if not requested:
                 break
+            by_name = {spec.name: spec for spec in specs}
             for request in requested:
-                called, returned = await self._run_tool(request, metrics, emit)
+                called, returned = await self._run_tool(request, metrics, emit, intent, by_name.get(request.name))
                 calls.append(called)
                 outcomes.append(returned)
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
+            done = sum(o.error != NOT_REQUESTED for o in outcomes)
+            if len(asked) > 1 and done < len(asked) and step < max_steps - 2:
+                # a compound request: the small model tends to answer after the first call, so it
+                # is told which of the things the user asked comes next (docs/llm.md)
+                messages.append(ChatMessage("user", f"Now do the next thing I asked: {asked[done]}."))
         reply = " ".join(r.strip() for r in replies if r.strip())
         if not fell_back:
             self._remember(messages[1:])
@@ -192,12 +208,16 @@ class Assistant:
         await emit(SentenceReady(sentence))
 
     async def _run_tool(
-        self, request: ToolCallRequested, metrics: TurnMetrics, emit: _Emit
+        self, request: ToolCallRequested, metrics: TurnMetrics, emit: _Emit, intent: Intent | None,
+        spec: ToolSpec | None,
     ) -> tuple[ToolCalled, ToolReturned]:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
-        if request.arguments_error is not None:
+        refused = refusal(intent, spec, request.arguments)
+        if refused is not None:  # the user did not ask for this: it never reaches the robot
+            outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)
+        elif request.arguments_error is not None:
             body = {"error": "invalid_arguments", "message": request.arguments_error,
                     "hint": "call the tool again with a JSON object of arguments", "details": {}}
             outcome = ToolOutcome(json.dumps(body), True, 0.0, body)

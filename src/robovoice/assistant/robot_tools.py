@@ -120,8 +120,9 @@ class RobotTools:
         if self._stale:
             listing = await self.client.list_tools(cache_mode="refresh")
             self._specs = [  # tools marked for people and programs only (a map) are not the model's
-                ToolSpec(tool.name, tool.description or tool.name, tool.input_schema) for tool in listing.tools
-                if (tool.meta or {}).get(FOR_MODEL_META_KEY) is not False
+                ToolSpec(tool.name, tool.description or tool.name, tool.input_schema,
+                         read_only=bool(tool.annotations and tool.annotations.read_only_hint))
+                for tool in listing.tools if (tool.meta or {}).get(FOR_MODEL_META_KEY) is not False
             ]
             sections = {tool.name: voice_section(tool.name, tool.meta) for tool in listing.tools}
             self._voice = {name: section for name, section in sections.items() if section is not None}

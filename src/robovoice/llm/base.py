@@ -127,6 +127,8 @@ class ToolSpec:
     name: str
     description: str
     parameters: Mapping[str, Any] = field(default_factory=lambda: {"type": "object", "properties": {}})
+    # declared read-only (MCP readOnlyHint): calling it changes nothing in the world; not sent to the model
+    read_only: bool = False
 
     def to_openai(self) -> dict[str, Any]:
         function = {"name": self.name, "description": self.description, "parameters": dict(self.parameters)}

@@ -108,6 +108,8 @@ class MotionWatch:
         self._own.add(call_id)
 
     def finished(self, call_id: str) -> None:
+        if call_id in self._own:
+            self._last = None  # a "moving" heard while our own drive ran is over with it
         self._own.discard(call_id)
 
     def forget(self, call_ids: set[str]) -> None:

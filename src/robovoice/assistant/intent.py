@@ -1,0 +1,201 @@
+"""What the user asked for, read from their words before anything acts. Plain code, no model.
+
+The embedded model acts too readily: it drives when told *not* to drive, calls Ben when
+told that Ben phoned, switches the projector on when asked whether it *could*, and stops
+after the first of several requests. This module reads an utterance the way a careful
+listener would, clause by clause:
+
+- a **request** (imperative, polite request, a wish addressed to the robot, a permission:
+  "go to…", "could you…", "I'd like to talk to Anna", "you can end the call now");
+- a **negated or postponed** request ("don't…", "not now", "later", "tomorrow");
+- an **ability question** ("are you able to…", "can you … if I asked", "do you know how…");
+- a **statement** (talk that mentions a place or a person: "Ben phoned earlier"; "stay
+  here", "keep driving": carry on as you are);
+- a **question** about the robot's state ("where are you?") — needs no action.
+
+`read_request` gives an `Intent`: whether the user asked for any action at all, the
+request clauses in order (the *steps* of a compound request), and the words of the negated
+clauses (what must not be done). The assistant's `ActionGate` uses it at the tool boundary;
+decisions and their reasons are logged. Rules were written on the dev set only
+(tests/data/eval/text.jsonl, docs/evaluation.md).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from enum import Enum
+
+
+class ClauseKind(Enum):
+    REQUEST = "request"
+    NEGATED = "negated"  # also postponed: "later", "not now"
+    ABILITY = "ability"
+    STATEMENT = "statement"
+    QUESTION = "question"
+
+
+@dataclass(frozen=True, slots=True)
+class Clause:
+    text: str
+    kind: ClauseKind
+
+
+@dataclass(frozen=True, slots=True)
+class Intent:
+    """An utterance read clause by clause."""
+
+    clauses: tuple[Clause, ...]
+
+    @property
+    def asks_action(self) -> bool:
+        """Some clause asks the robot to do something now."""
+        return any(c.kind is ClauseKind.REQUEST for c in self.clauses)
+
+    @property
+    def steps(self) -> tuple[str, ...]:
+        """The things asked, in the order they were said: the requests, and the questions
+        asked beside them ("tell me where you are and how charged you are")."""
+        wanted = (ClauseKind.REQUEST, ClauseKind.QUESTION)
+        return tuple(c.text for c in self.clauses if c.kind in wanted)
+
+    @property
+    def refusal(self) -> ClauseKind | None:
+        """Why no action was asked for (the first non-request kind that explains it), or None."""
+        if self.asks_action:
+            return None
+        for kind in (ClauseKind.NEGATED, ClauseKind.ABILITY, ClauseKind.STATEMENT):
+            if any(c.kind is kind for c in self.clauses):
+                return kind
+        return ClauseKind.QUESTION if self.clauses else None
+
+    def negated_words(self) -> set[str]:
+        """Words said only in negated clauses (what the user asked *not* to do)."""
+        negated = {w for c in self.clauses if c.kind is ClauseKind.NEGATED for w in words(c.text)}
+        asked = {w for c in self.clauses if c.kind is ClauseKind.REQUEST for w in words(c.text)}
+        return negated - asked
+
+
+def words(text: str) -> list[str]:
+    return re.findall(r"[a-z0-9']+", text.lower().replace("\u2019", "'"))
+
+
+# --- splitting ------------------------------------------------------------------------------
+
+# Sentence ends, commas/semicolons, and the conjunctions that join requests.
+_SPLIT = re.compile(
+    r"[.!?;]+\s*|,\s*|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+",
+    re.IGNORECASE,
+)
+
+
+_LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
+
+
+def split_clauses(text: str) -> list[str]:
+    parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text.strip())]
+    return [p for p in parts if p]
+
+
+# --- classifying ----------------------------------------------------------------------------
+
+_FILLER = re.compile(
+    r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first|firstly|next|finally|just|"
+    r"hey|hi|robot|jarvis|and|then|yes|yeah)\b[\s,]*)+",
+    re.IGNORECASE,
+)
+_NEGATION = re.compile(
+    r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
+    r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
+    r"hold off|rather not|rather you didn'?t|no,)\b|\bnot\s*$",
+    re.IGNORECASE,
+)
+_LATER = re.compile(
+    r"\b(?:later|tomorrow|tonight|this evening|next week|one day|some day|someday|in an? (?:hour|minute|while)|"
+    r"in \w+ (?:hours|minutes)|after (?:lunch|dinner|breakfast)|until)\b",
+    re.IGNORECASE,
+)
+_ABILITY = re.compile(
+    r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
+    r"would you be able|do you know how|can robots|something you can|the kind of robot|"
+    r"do you have|have you got|how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
+    r"by yourself|on your own|ever)\b",
+    re.IGNORECASE,
+)
+# "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").
+_CAN_GENERIC = re.compile(
+    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|video calls|calls|projectors)\b",
+    re.IGNORECASE,
+)
+_POLITE = re.compile(
+    r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
+    r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
+    r"^i(?:'d| would) like (?:you|to)\b|^i (?:want|need|wish)\b|^i'd love\b|^i(?:'d| would) love\b",
+    re.IGNORECASE,
+)
+_IMPERATIVE = frozenset({
+    "go", "drive", "come", "move", "head", "roll", "walk", "make", "take", "bring", "turn", "switch", "put",
+    "power", "start", "stop", "end", "hang", "call", "ring", "phone", "dial", "video", "connect", "get",
+    "tell", "show", "check", "look", "list", "read", "cancel", "return", "park", "wait", "stay", "halt",
+    "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
+    "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
+    "join", "photograph", "snap", "capture", "shut",
+})
+_WH = frozenset({
+    "what", "where", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do", "does",
+    "did", "have", "has", "was", "were",
+})
+
+
+_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about it)|call it off|stop)\b", re.IGNORECASE)
+# Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
+_HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
+_PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
+
+
+def classify(clause: str) -> ClauseKind:
+    text = _FILLER.sub("", clause.strip()).strip()
+    lowered = text.lower()
+    if not text:
+        return ClauseKind.STATEMENT
+    if _CALL_OFF.search(lowered) and not re.search(r"\b(?:don'?t|do not|never) stop\b", lowered):
+        return ClauseKind.REQUEST  # calling something off (a stop, a drive not wanted after all)
+    if _NEGATION.search(lowered) or _LATER.search(lowered) or re.match(r"^no\b", lowered):
+        return ClauseKind.NEGATED
+    if _ABILITY.search(lowered) or _CAN_GENERIC.search(lowered):
+        return ClauseKind.ABILITY
+    if _POLITE.search(lowered):
+        return ClauseKind.REQUEST
+    first = words(lowered)[0]
+    if first in _HOLD and not _PLACE.search(lowered):
+        return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
+    if first in _IMPERATIVE:
+        return ClauseKind.REQUEST
+    if first in _WH:
+        return ClauseKind.QUESTION
+    terse = words(lowered)
+    if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now"):
+        return ClauseKind.REQUEST  # a terse command: "projector on", "kitchen, please"
+    return ClauseKind.STATEMENT
+
+
+def read_request(text: str, *, answering: bool = False) -> Intent:
+    """The utterance's clauses and what each asks for. A fragment without a verb of its own
+    ("…, then the bedroom") continues the request before it. `answering`: the words answer a
+    question the robot just asked ("Which room?"), so a plain statement ("The bedroom.")
+    is the request that question offered."""
+    clauses: list[Clause] = []
+    for part in split_clauses(text):
+        kind = classify(part)
+        if answering and kind is ClauseKind.STATEMENT:
+            kind = ClauseKind.REQUEST
+        if kind is ClauseKind.STATEMENT and clauses and clauses[-1].kind is ClauseKind.REQUEST and _fragment(part):
+            kind = ClauseKind.REQUEST
+        clauses.append(Clause(part, kind))
+    return Intent(tuple(clauses))
+
+
+def _fragment(part: str) -> bool:
+    """A verbless continuation: "the bedroom", "to the front door", "Ben"."""
+    text = _FILLER.sub("", part.strip()).strip().lower()
+    return bool(re.match(r"^(?:back )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))

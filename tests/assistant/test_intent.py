@@ -1,0 +1,72 @@
+"""Reading what the user asked for (`assistant.intent`) and refusing actuation calls nobody
+asked for (`assistant.gate`): plain code, made-up utterances, no model."""
+
+from __future__ import annotations
+
+import pytest
+
+from robovoice.assistant.gate import NOT_REQUESTED, refusal
+from robovoice.assistant.intent import ClauseKind, read_request, split_clauses
+from robovoice.llm.base import ToolSpec
+
+NAV = ToolSpec("navigate_to", "drive")
+CALL = ToolSpec("start_video_call", "call")
+POSE = ToolSpec("get_robot_pose", "where", read_only=True)
+
+
+@pytest.mark.parametrize("text", [
+    "Bring yourself over to the sofa, please.",
+    "Could you pop into the kitchen?",
+    "I'd like to speak to my son.",
+    "You may hang up now.",
+    "Stop!",
+    "Never mind, I don't want to go there after all.",
+    "Wait for me in the bedroom.",
+    "Projector off.",
+])
+def test_requests_ask_for_action(text: str) -> None:
+    assert read_request(text).asks_action, read_request(text)
+
+
+@pytest.mark.parametrize(("text", "why"), [
+    ("Do not go into the garden.", ClauseKind.NEGATED),
+    ("Maybe next week you could call Clara.", ClauseKind.NEGATED),
+    ("Keep going, don't stop.", ClauseKind.NEGATED),
+    ("Are you able to open doors?", ClauseKind.ABILITY),
+    ("Can you call people on the phone if I ask?", ClauseKind.ABILITY),
+    ("Anna phoned me on Sunday.", ClauseKind.STATEMENT),
+    ("The kitchen floor is wet.", ClauseKind.STATEMENT),
+    ("Stay where you are.", ClauseKind.STATEMENT),
+])
+def test_no_action_asked(text: str, why: ClauseKind) -> None:
+    intent = read_request(text)
+    assert not intent.asks_action and intent.refusal is why, intent
+
+
+def test_compound_requests_keep_their_order_and_verbless_continuations() -> None:
+    assert split_clauses("Go to the hall, then switch on the lamp and call Ben.") == [
+        "Go to the hall", "switch on the lamp", "call Ben"]
+    assert read_request("Drive to the kitchen, then the bedroom, then back to the dock.").steps == (
+        "Drive to the kitchen", "the bedroom", "back to the dock")
+    both = read_request("Where are you and how charged are you?")
+    assert not both.asks_action and both.steps == ("Where are you", "how charged are you")
+
+
+def test_an_answer_to_the_robots_question_is_a_request() -> None:
+    assert not read_request("The bedroom.").asks_action
+    assert read_request("The bedroom.", answering=True).asks_action
+    assert not read_request("No, not now.", answering=True).asks_action
+
+
+def test_the_gate_refuses_only_actuation_nobody_asked_for() -> None:
+    mention = read_request("My daughter Anna rang yesterday.")
+    body = refusal(mention, CALL, {"contact": "Anna"})
+    assert body is not None and body["error"] == NOT_REQUESTED and body["details"]["reason"] == "statement"
+    assert refusal(mention, POSE, {}) is None  # looking something up is never refused
+    assert refusal(read_request("Please call Anna."), CALL, {"contact": "Anna"}) is None
+    assert refusal(None, CALL, {"contact": "Anna"}) is None  # audio to an audio model: no words to judge
+    either = read_request("Don't call Anna, call Ben instead.")
+    assert refusal(either, CALL, {"contact": "Ben"}) is None
+    refused = refusal(either, CALL, {"contact": "Anna"})
+    assert refused is not None and refused["details"]["reason"] == "negated"
+    assert "not to do" in refusal(read_request("Don't drive to the kitchen."), NAV, {"target": "kitchen"})["hint"]

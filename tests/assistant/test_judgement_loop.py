@@ -1,0 +1,56 @@
+"""The check before acting and compound requests, in the real tool loop: a scripted model
+behind a real HTTP server, the embedded sim behind the real MCP server."""
+
+from __future__ import annotations
+
+from robovoice.assistant.connect import connect_robot
+from robovoice.assistant.gate import NOT_REQUESTED
+from robovoice.assistant.loop import Assistant
+from robovoice.config import RobotConfig
+from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
+from robovoice.llm.openai_compat import OpenAICompatBackend
+
+SIM = RobotConfig(address="sim://?speed=50")
+
+
+def call(name: str, **arguments: object) -> ToolCallReply:
+    return ToolCallReply((ScriptedCall(name, arguments),))
+
+
+async def test_a_negated_request_never_reaches_the_robot() -> None:
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("navigate_to", target="bathroom"), TextReply("All right, I'll stay here.")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("Don't drive to the bathroom just now.")
+        finally:
+            await backend.aclose()
+        assert robot.sim is not None
+        assert not robot.sim.state.moving and robot.sim.state.nearest_place != "bathroom"
+    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
+    assert result.reply == "All right, I'll stay here."
+    # the model was told why, with a hint it can follow
+    tool_message = server.requests[1].messages[-1]
+    assert tool_message["role"] == "tool" and "not to do this now" in tool_message["content"]
+
+
+async def test_a_compound_request_is_carried_out_step_by_step() -> None:
+    script = [
+        call("navigate_to", target="kitchen"),
+        call("set_projector_power", on=True),
+        TextReply("I'm in the kitchen and the projector is on."),
+    ]
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(script) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("Go to the kitchen and then switch the projector on.")
+        finally:
+            await backend.aclose()
+        assert robot.sim is not None and robot.sim.state.projector_on
+    assert [c.name for c in result.calls] == ["navigate_to", "set_projector_power"]
+    # first the model was told to take one thing at a time, after the drive what comes next
+    assert server.requests[0].last_user_text == "One thing at a time, in order. First: Go to the kitchen."
+    assert server.requests[1].last_user_text == "Now do the next thing I asked: switch the projector on."
+    assert server.requests[2].last_user_text == "Now do the next thing I asked: switch the projector on."
+    assert len(server.requests) == 3
