@@ -69,4 +69,5 @@ def test_the_gate_refuses_only_actuation_nobody_asked_for() -> None:
     assert refusal(either, CALL, {"contact": "Ben"}) is None
     refused = refusal(either, CALL, {"contact": "Anna"})
     assert refused is not None and refused["details"]["reason"] == "negated"
-    assert "not to do" in refusal(read_request("Don't drive to the kitchen."), NAV, {"target": "kitchen"})["hint"]
+    negated = refusal(read_request("Don't drive to the kitchen."), NAV, {"target": "kitchen"})
+    assert negated is not None and "not to do" in negated["hint"]

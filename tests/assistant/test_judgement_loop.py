@@ -7,7 +7,7 @@ from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.gate import NOT_REQUESTED
 from robovoice.assistant.loop import Assistant
 from robovoice.config import RobotConfig
-from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
+from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ScriptedReply, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
 
 SIM = RobotConfig(address="sim://?speed=50")
@@ -36,7 +36,7 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
 
 
 async def test_a_compound_request_is_carried_out_step_by_step() -> None:
-    script = [
+    script: list[ScriptedReply] = [
         call("navigate_to", target="kitchen"),
         call("set_projector_power", on=True),
         TextReply("I'm in the kitchen and the projector is on."),
