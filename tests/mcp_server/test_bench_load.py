@@ -4,6 +4,8 @@ audit log holds one valid line per call."""
 
 from __future__ import annotations
 
+import pytest
+
 from robovoice.mcp_server.bench_load import bench_load
 
 
@@ -14,3 +16,10 @@ async def test_five_clients_ten_calls_while_nodes_come_and_go() -> None:
     assert report.final_list_changed_reached == 5
     assert report.audit_lines == 50 and report.audit_skipped_lines == 0
     assert report.ok and report.to_dict()["ok"] is True
+
+
+@pytest.mark.integration
+async def test_the_same_with_the_nodes_over_zenoh() -> None:
+    pytest.importorskip("zenoh")
+    report = await bench_load(5, 10, churn_s=0.05, call_timeout_s=10.0, middleware="zenoh")
+    assert report.first_errors == [] and report.ok and report.middleware == "zenoh"

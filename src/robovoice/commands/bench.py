@@ -67,6 +67,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     load = sub.add_parser("load", help="N concurrent MCP clients over streamable HTTP, nodes joining and leaving")
     load.add_argument("--clients", type=positive_int, default=50)
     load.add_argument("--calls", type=positive_int, default=200, help="calls per client (default 200)")
+    load.add_argument("--middleware", choices=["memory", "zenoh"], default="memory", help="where the nodes are")
     load.set_defaults(run=_load)
 
 
@@ -150,4 +151,4 @@ def _console(args: argparse.Namespace) -> int:
 def _load(args: argparse.Namespace) -> int:
     from robovoice.mcp_server.bench_load import bench_load
 
-    return _print(asyncio.run(bench_load(args.clients, args.calls)))
+    return _print(asyncio.run(bench_load(args.clients, args.calls, middleware=args.middleware)))

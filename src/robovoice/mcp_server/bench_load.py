@@ -3,9 +3,9 @@
 N concurrent MCP clients (the SDK's `Client`, 2025 handshake, each with its GET stream open
 for notifications) over streamable HTTP to one `RobotToolServer` under uvicorn on loopback,
 each making a fixed number of calls — tools and snapshots, stable and churning — while sim
-nodes join and leave the memory bus (the ``projector`` and ``communication`` nodes are
-started and stopped as separate sim robots every `churn_s`). Every call is bounded by
-`call_timeout_s`.
+nodes join and leave (the ``projector`` and ``communication`` nodes are started and stopped as
+separate sim robots every `churn_s`), on the memory bus or over Zenoh (`middleware`). Every
+call is bounded by `call_timeout_s`.
 
 Reported: throughput, latency p50/p99/max, errors (exceptions, protocol errors, timeouts,
 tool errors other than the expected ones) vs expected refusals (a tool of a node that has
@@ -20,6 +20,7 @@ import asyncio
 import contextlib
 import json
 import resource
+import socket
 import statistics
 import tempfile
 import time
@@ -31,10 +32,12 @@ from typing import Any
 import mcp_types as types
 from mcp import Client
 
-from robovoice.address import SimAddress
+from robovoice.address import MiddlewareAddress, SimAddress
 from robovoice.mcp_server.audit import read_audit
 from robovoice.mcp_server.http import http_server
 from robovoice.mcp_server.runtime import RobotSide, open_robot_side
+from robovoice.middleware import open_middleware
+from robovoice.middleware.base import Middleware
 from robovoice.sim.robot import SimRobot, start_sim_robot
 
 STABLE_NODES = ("navigation", "base", "localization", "camera")
@@ -64,6 +67,7 @@ class _ClientStats:
 
 @dataclass(frozen=True, slots=True)
 class LoadReport:
+    middleware: str
     clients: int
     calls_per_client: int
     calls_done: int
@@ -98,10 +102,10 @@ class LoadReport:
 
 
 class _Churn:
-    """Starts and stops the churning sim nodes on the robot's middleware."""
+    """Starts and stops the churning sim nodes on `middleware`."""
 
-    def __init__(self, side: RobotSide, speed: float) -> None:
-        self._side = side
+    def __init__(self, middleware: Middleware, speed: float) -> None:
+        self._middleware = middleware
         self._speed = speed
         self._robot: SimRobot | None = None
         self.joins = 0
@@ -109,7 +113,7 @@ class _Churn:
 
     async def join(self) -> None:
         if self._robot is None:
-            self._robot = await start_sim_robot(self._side.middleware, speed=self._speed, nodes=CHURNING_NODES)
+            self._robot = await start_sim_robot(self._middleware, speed=self._speed, nodes=CHURNING_NODES)
             self.joins += 1
 
     async def leave(self) -> None:
@@ -182,16 +186,48 @@ async def _temporary_audit() -> AsyncIterator[Path]:
         yield Path(folder) / "audit.jsonl"
 
 
+@contextlib.asynccontextmanager
+async def _robot(middleware: str, sim_speed: float, audit_path: Path) -> AsyncIterator[tuple[RobotSide, Middleware]]:
+    """The robot side and the middleware the churning nodes go on: ``memory`` (the sim in this
+    process), or ``zenoh`` (a fresh loopback rendezvous; the stable nodes and the churning ones
+    on two more Zenoh sessions in this process, so every call and presence change crosses Zenoh)."""
+    if middleware == "memory":
+        async with open_robot_side(SimAddress(speed=sim_speed, nodes=STABLE_NODES), manifests=None,
+                                   audit_log=audit_path) as side:
+            yield side, side.middleware
+        return
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    uri = f"zenoh://127.0.0.1:{port}?robot=load"
+    nodes, churning = open_middleware(uri), open_middleware(uri)
+    await nodes.start()
+    await churning.start()
+    stable = await start_sim_robot(nodes, speed=sim_speed, nodes=STABLE_NODES)
+    try:
+        async with open_robot_side(MiddlewareAddress(uri), manifests=None, audit_log=audit_path) as side:
+            async with asyncio.timeout(30):
+                while "navigate_to" not in {t.name for t in side.server.tools()}:
+                    await side.server.changed()
+            yield side, churning
+    finally:
+        await stable.stop()
+        await churning.close()
+        await nodes.close()
+
+
 async def bench_load(clients: int = 50, calls: int = 200, *, churn_s: float = 0.5, call_timeout_s: float = 30.0,
-                     sim_speed: float = 20.0) -> LoadReport:
+                     sim_speed: float = 20.0, middleware: str = "memory") -> LoadReport:
     """Run the load (see the module docstring) and report."""
     cpu0 = time.process_time()
     async with (_temporary_audit() as audit_path,
-                open_robot_side(SimAddress(speed=sim_speed, nodes=STABLE_NODES), manifests=None,
-                                audit_log=audit_path) as side,
+                _robot(middleware, sim_speed, audit_path) as (side, churn_on),
                 http_server(side.server, port=0) as endpoint):
-        churn = _Churn(side, sim_speed)
+        churn = _Churn(churn_on, sim_speed)
         await churn.join()
+        async with asyncio.timeout(30):
+            while "set_projector_power" not in {t.name for t in side.server.tools()}:
+                await side.server.changed()
         await side.server.settled()
         stats = [_ClientStats() for _ in range(clients)]
         ready, go, done, stop = asyncio.Barrier(clients + 1), asyncio.Event(), asyncio.Event(), asyncio.Event()
@@ -227,7 +263,7 @@ async def bench_load(clients: int = 50, calls: int = 200, *, churn_s: float = 0.
     done_calls = len(latencies)
     quantiles = statistics.quantiles(latencies, n=100, method="inclusive") if len(latencies) > 1 else latencies * 99
     return LoadReport(
-        clients=clients, calls_per_client=calls, calls_done=done_calls, errors=len(errors),
+        middleware=middleware, clients=clients, calls_per_client=calls, calls_done=done_calls, errors=len(errors),
         timeouts=sum(s.timeouts for s in stats), expected_refusals=sum(s.refusals for s in stats),
         seconds=round(seconds, 2), calls_per_s=round(done_calls / seconds, 1) if seconds else 0.0,
         p50_ms=round(quantiles[49], 2) if quantiles else 0.0, p99_ms=round(quantiles[98], 2) if quantiles else 0.0,
