@@ -60,7 +60,6 @@ async def _pose(client: Client) -> dict[str, Any]:
 
 
 async def test_node_killed_mid_drive_then_restarted(spawn: Callable[..., Child], tmp_path: Path) -> None:
-    pytest.importorskip("zenoh")
     uri = f"zenoh://127.0.0.1:{free_port()}?robot=faults"
     spawn("sim[rest]", sim_argv(uri, "base", "localization", "camera", "projector", "communication",
                                 speed=5)).wait_for_line("robovoice sim: ready")

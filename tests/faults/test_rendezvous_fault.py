@@ -37,7 +37,6 @@ async def _until_tools(client: Client, present: set[str], absent: set[str]) -> N
 
 
 async def test_the_rendezvous_holder_dies_and_comes_back(spawn: Callable[..., Child], tmp_path: Path) -> None:
-    pytest.importorskip("zenoh")
     uri = f"zenoh://127.0.0.1:{free_port()}?robot=rendezvous"
     holder = spawn("sim[projector]", sim_argv(uri, "projector"))  # first: it listens on the rendezvous port
     holder.wait_for_line("robovoice sim: ready")

@@ -13,7 +13,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import pytest
 from hypothesis import example, given
 from hypothesis import strategies as st
 
@@ -215,7 +214,6 @@ def mutated_wavs(draw: st.DrawFn) -> bytes:
 @bounded(250)
 @given(mutated_wavs())
 def test_mutated_wav_headers_read_or_raise_audio_error(content: bytes) -> None:
-    pytest.importorskip("soundfile")
     from robovoice.audio.wav import read_wav
 
     with tempfile.TemporaryDirectory() as folder:

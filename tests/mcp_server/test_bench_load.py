@@ -20,6 +20,5 @@ async def test_five_clients_ten_calls_while_nodes_come_and_go() -> None:
 
 @pytest.mark.integration
 async def test_the_same_with_the_nodes_over_zenoh() -> None:
-    pytest.importorskip("zenoh")
     report = await bench_load(5, 10, churn_s=0.05, call_timeout_s=10.0, middleware="zenoh")
     assert report.first_errors == [] and report.ok and report.middleware == "zenoh"
