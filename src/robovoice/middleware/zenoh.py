@@ -5,8 +5,8 @@ are publications keyed by the goal id), topics publications, presence liveliness
 and each node serves its NodeInfo (with its manifest) so a server needs no shared files.
 Module map: `zenoh_config` (URIs), `zenoh_keys` (key layout), `zenoh_codec` (payloads),
 `zenoh_bridge` (Zenoh threads -> event loop), `zenoh_query` (a query in flight),
-`zenoh_presence` (liveliness and infos), `zenoh_node` (serving a node), this module
-(the session and the client side).
+`zenoh_presence` (liveliness and infos), `zenoh_node` (serving a node), `zenoh_topic`
+(a subscription), this module (the session and the client side).
 """
 
 from __future__ import annotations
@@ -15,7 +15,6 @@ import asyncio
 import json
 import logging
 import re
-import time
 import uuid
 from collections.abc import Callable, Mapping
 
@@ -51,6 +50,7 @@ from robovoice.middleware.zenoh_keys import KeyLayout
 from robovoice.middleware.zenoh_node import ZenohNodeHost
 from robovoice.middleware.zenoh_presence import Presence, PresenceWatch
 from robovoice.middleware.zenoh_query import Answer, Closed, Exchange, Finished, Item, NodeGone, send_query
+from robovoice.middleware.zenoh_topic import TopicSubscription
 
 log = logging.getLogger(__name__)
 
@@ -60,43 +60,9 @@ MESH_SETTLE_S = 0.05
 MESH_SETTLE_MAX_S = 1.0
 """At start in peer mode: how long the peer count must hold still, and the most to wait."""
 FEEDBACK_DRAIN_S = 0.5
+"""After an action's result, how long to wait for feedback the node sent before it."""
 TOPIC_BACKLOG = 1000
 """Messages of one topic that may wait for the event loop; beyond, the oldest are dropped."""
-"""After an action's result, how long to wait for feedback the node sent before it."""
-
-
-class TopicSubscription:
-    """A `subscribe()` handle."""
-
-    def __init__(self, owner: ZenohMiddleware, topic: str, callback: Callable[[Message], None]) -> None:
-        self._owner = owner
-        self._topic = topic
-        self._callback = callback
-        self._subscriber: zenoh.Subscriber[None] | None = None
-        self.closed = False
-
-    def deliver(self, sample: zenoh.Sample) -> None:
-        if self.closed:
-            return
-        try:
-            value = decode(sample.payload.to_bytes())
-        except ValueError as exc:
-            log.warning("topic %s: dropped a message that is not JSON (%s)", self._topic, exc)
-            return
-        stamp = decode_object(None if sample.attachment is None else sample.attachment.to_bytes()).get("stamp")
-        message = Message(self._topic, value, float(stamp) if isinstance(stamp, int | float) else time.time())
-        try:
-            self._callback(message)
-        except Exception:  # a subscriber's bug must not break delivery
-            log.exception("subscriber of %s failed", self._topic)
-
-    def close(self) -> None:
-        if self.closed:
-            return
-        self.closed = True
-        if self._subscriber is not None:
-            undeclare(self._subscriber)
-        self._owner._subscriptions.discard(self)
 
 
 class ZenohMiddleware:
@@ -362,7 +328,7 @@ class ZenohMiddleware:
 
     async def subscribe(self, topic: str, callback: Callable[[Message], None]) -> TopicSubscription:
         session, bridge = self._open_session()
-        subscription = TopicSubscription(self, topic, callback)
+        subscription = TopicSubscription(self._subscriptions, topic, callback)
         handler = bridge.stream(subscription.deliver, limit=TOPIC_BACKLOG, what=f"topic {topic!r}")
         subscription._subscriber = session.declare_subscriber(self._layout.topic(topic), handler)
         self._subscriptions.add(subscription)
