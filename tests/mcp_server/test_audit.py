@@ -230,3 +230,13 @@ def test_robovoice_audit_filters_and_summarises(tmp_path: Path, capsys: pytest.C
 def test_robovoice_audit_without_a_log_says_where_it_looked(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["audit", str(tmp_path / "none.jsonl")]) == 1
     assert "no audit log at" in capsys.readouterr().err
+
+
+def test_serve_and_call_take_the_rotation_settings(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "audit.jsonl"
+    for _ in range(4):
+        assert main(["call", "--robot", "sim://?speed=50", "get_battery_state", "--audit-log", str(path),
+                     "--audit-max-mb", "0.0002", "--audit-keep", "2"]) == 0  # ~210 bytes: one record a file
+    capsys.readouterr()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["audit.jsonl", "audit.jsonl.1", "audit.jsonl.2"]
+    assert [r["tool"] for r in read_audit(path).records] == ["get_battery_state"] * 3

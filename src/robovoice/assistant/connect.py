@@ -27,6 +27,7 @@ from robovoice.assistant.robot_tools import RobotTools
 from robovoice.config import RobotConfig, read_secret_file
 from robovoice.errors import ConfigError, RobotUnreachableError
 from robovoice.mcp_server._groups import unwrapped
+from robovoice.mcp_server.audit import AuditLog
 from robovoice.mcp_server.runtime import RobotSide, open_robot_side, wait_for_tools
 from robovoice.mcp_server.tcp import nodelay_transport
 from robovoice.sim import SimRobot
@@ -70,7 +71,7 @@ def _root_cause(exc: BaseException) -> str:
 async def connect_robot(
     config: RobotConfig,
     *,
-    audit_log: Path | None = None,
+    audit_log: Path | AuditLog | None = None,
     call_timeout_s: float = CALL_TIMEOUT_S,
     client_name: str = "robovoice-assistant",
     settle_s: float = 0.0,

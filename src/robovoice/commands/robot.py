@@ -41,6 +41,8 @@ from robovoice.commands.common import (
     host_name,
     non_negative_float,
     port_number,
+    positive_float,
+    positive_int,
     robot_config_from_args,
 )
 from robovoice.config import RobotConfig
@@ -57,6 +59,7 @@ from robovoice.mcp_server import (
     wait_for_snapshots,
     wait_for_tools,
 )
+from robovoice.mcp_server.audit import DEFAULT_KEEP, DEFAULT_MAX_BYTES, AuditLog
 
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
@@ -80,6 +83,10 @@ def _add_audit_args(parser: argparse.ArgumentParser) -> None:
                        help="append every tool call to this JSON Lines file (default: audit.jsonl in the state "
                             "dir, ~/.local/state/robovoice)")
     audit.add_argument("--no-audit-log", action="store_true", help="keep no audit log")
+    parser.add_argument("--audit-max-mb", type=positive_float, default=DEFAULT_MAX_BYTES / 2**20, metavar="MB",
+                        help="rotate the audit log past this size: F -> F.1 -> F.2 ... (default 16)")
+    parser.add_argument("--audit-keep", type=positive_int, default=DEFAULT_KEEP, metavar="N",
+                        help="rotated audit files kept (default 5)")
 
 
 def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is private
@@ -137,14 +144,15 @@ def _robot_config(args: argparse.Namespace) -> RobotConfig:
     return robot_config_from_args(args, config_from_args(args))
 
 
-def _audit_log(args: argparse.Namespace, target: RobotAddress) -> Path | None:
+def _audit_log(args: argparse.Namespace, target: RobotAddress) -> AuditLog | None:
     if getattr(args, "no_audit_log", False):
         return None
     if not isinstance(target, LocalAddress):
         if getattr(args, "audit_log", None) is not None:
             raise ConfigError(f"--audit-log applies to a robot served here; the MCP server at {target} keeps its own")
         return None
-    return getattr(args, "audit_log", None) or default_audit_path()
+    path = getattr(args, "audit_log", None) or default_audit_path()
+    return AuditLog(path, max_bytes=int(args.audit_max_mb * 2**20), keep=args.audit_keep)
 
 
 def _wait_s(args: argparse.Namespace, target: RobotAddress) -> float:

@@ -56,9 +56,10 @@ def load_override(folder: Path | None) -> ManifestSet | None:
 
 @asynccontextmanager
 async def open_robot_side(address: LocalAddress, *, manifests: Path | None,
-                          audit_log: Path | None) -> AsyncIterator[RobotSide]:
+                          audit_log: Path | AuditLog | None) -> AsyncIterator[RobotSide]:
     """Start the robot side `address` names (`manifests`: a folder replacing the nodes' own;
-    `audit_log`: a path, or None for none); stop it all (sim, server, middleware) on the way out."""
+    `audit_log`: a path, an `AuditLog` (its rotation settings), or None for none); stop it all
+    (sim, server, middleware, audit log) on the way out."""
     override = load_override(manifests)
     match address:
         case SimAddress():
@@ -73,7 +74,7 @@ async def open_robot_side(address: LocalAddress, *, manifests: Path | None,
             speed = DEFAULT_SIM_SPEED if address.speed is None else address.speed
             sim = await start_sim_robot(middleware, speed=speed, nodes=address.nodes)
             stack.push_async_callback(sim.stop)
-        audit = AuditLog(audit_log)
+        audit = audit_log if isinstance(audit_log, AuditLog) else AuditLog(audit_log)
         stack.callback(audit.close)
         server = RobotToolServer(middleware, manifests=override, audit=audit)
         await stack.enter_async_context(server.running())
