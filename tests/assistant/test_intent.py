@@ -48,6 +48,7 @@ def test_compound_requests_keep_their_order_and_verbless_continuations() -> None
         "Go to the hall", "switch on the lamp", "call Ben"]
     assert read_request("Drive to the kitchen, then the bedroom, then back to the dock.").steps == (
         "Drive to the kitchen", "the bedroom", "back to the dock")
+    assert read_request("Call Dr. Weber, please.").steps == ("Call Dr. Weber",)
     both = read_request("Where are you and how charged are you?")
     assert not both.asks_action and both.steps == ("Where are you", "how charged are you")
 

@@ -83,8 +83,8 @@ def words(text: str) -> list[str]:
 # --- splitting ------------------------------------------------------------------------------
 
 # Sentence ends, commas/semicolons, and the conjunctions that join requests.
-_SPLIT = re.compile(
-    r"[.!?;]+\s*|,\s*|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+",
+_SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
+    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+",
     re.IGNORECASE,
 )
 
