@@ -3,6 +3,7 @@ past the nesting depth, the body handed on unchanged otherwise; the console's sh
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterator
 
 from starlette.applications import Starlette
@@ -58,3 +59,11 @@ def test_too_deep_is_400_and_the_console_gets_its_own_error_shape() -> None:
         big = client.post("/", content=b"x" * 2000)
     assert deep.status_code == 400 and deep.json()["error"] == "too_deep"
     assert big.status_code == 413 and big.json()["error"] == "too_large"
+
+
+def test_the_depth_scan_is_linear_on_hostile_bodies() -> None:
+    # an unterminated string full of escaped quotes used to be rescanned from every quote (hours)
+    hostile = [b'"' + b'\\"' * 500_000 + b"[" * 70, b'"' + b"[" * 1_000_000, b'"\\' * 500_000 + b"{" * 70]
+    started = time.perf_counter()
+    assert [json_depth_exceeds(body, 64) for body in hostile] == [False, False, False]
+    assert time.perf_counter() - started < 5.0  # ~0.2 s; the quadratic scan took hours on these
