@@ -91,8 +91,8 @@ class RobotFailure(RobovoiceError):
             failure,
             str(body.get("message", code)),
             code=code,
-            hint=body.get("hint"),
-            details=body.get("details") or {},
+            hint=hint if isinstance(hint := body.get("hint"), str) else None,
+            details=details if isinstance(details := body.get("details"), Mapping) else {},
         )
         return failure
 

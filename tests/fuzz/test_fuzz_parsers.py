@@ -4,6 +4,7 @@ documented error with a message — never another exception, never a hang."""
 
 from __future__ import annotations
 
+import contextlib
 import io
 import json
 import struct
@@ -225,3 +226,29 @@ def test_mutated_wav_headers_read_or_raise_audio_error(content: bytes) -> None:
             assert str(path) in str(exc)
         else:
             assert chunk.samples.dtype == np.int16
+
+
+# --- payloads from other Zenoh processes -------------------------------------------------------
+
+PAYLOADS = st.one_of(
+    st.binary(max_size=80),
+    JSON_VALUES.map(lambda v: json.dumps(v).encode()),
+    st.integers(100, 20_000).map(lambda n: b"[" * n + b"]" * n),
+    st.integers(100, 20_000).map(lambda n: b'{"progress":' * n + b"1" + b"}" * n),
+    st.fixed_dictionaries({}, optional={"progress": SCALARS, "total": SCALARS, "message": SCALARS,
+                                        "data": JSON_VALUES, "error": SCALARS, "details": JSON_VALUES}
+                          ).map(lambda v: json.dumps(v).encode()),
+)
+
+
+@bounded(300)
+@given(PAYLOADS)
+def test_zenoh_payloads_decode_or_raise_value_error(data: bytes) -> None:
+    from robovoice.middleware import zenoh_codec
+
+    assert isinstance(zenoh_codec.decode_object(data), dict)  # never raises
+    failure = zenoh_codec.failure_from_bytes(data, "node/rpc")  # never raises
+    assert failure.code
+    for strict in (zenoh_codec.decode, zenoh_codec.feedback_from_bytes):
+        with contextlib.suppress(ValueError):  # also UnicodeDecodeError; nothing else
+            strict(data)

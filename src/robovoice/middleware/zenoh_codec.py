@@ -16,6 +16,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from robovoice.errors import RobotFailure
+from robovoice.json_limits import json_depth_exceeds
 from robovoice.middleware.base import JSON, Feedback, NodeInfo, RpcInfo
 from robovoice.middleware.zenoh_keys import PROTOCOL_VERSION
 
@@ -27,10 +28,16 @@ def encode(value: JSON) -> bytes:
     return json.dumps(value, ensure_ascii=False, separators=(",", ":"), allow_nan=False).encode("utf-8")
 
 
+MAX_DEPTH = 128
+
+
 def decode(data: bytes) -> JSON:
-    """Parse a JSON payload; an empty payload is ``null`` (raises `ValueError` otherwise)."""
+    """Parse a JSON payload; an empty payload is ``null`` (raises `ValueError` otherwise, also for
+    one nested deeper than `MAX_DEPTH`, which would end in a `RecursionError`)."""
     if not data:
         return None
+    if json_depth_exceeds(data, MAX_DEPTH):
+        raise ValueError(f"a payload nested deeper than {MAX_DEPTH} levels")
     return json.loads(data.decode("utf-8"))
 
 
@@ -63,7 +70,7 @@ def failure_from_bytes(data: bytes, where: str) -> RobotFailure:
         body = decode(data)
     except ValueError:
         body = None
-    if isinstance(body, dict) and isinstance(body.get("error"), str):
+    if isinstance(body, dict) and isinstance(body.get("error"), str) and body["error"]:
         return RobotFailure.from_dict(body)
     text = data.decode("utf-8", errors="replace")[:500]
     return RobotFailure(f"{where} failed: {text}", code="internal_error", details={"where": where})
@@ -85,12 +92,12 @@ def feedback_from_bytes(data: bytes) -> Feedback:
     data_field = body.get("data") or {}
     if not isinstance(data_field, dict):
         raise ValueError("feedback 'data' must be a JSON object")
-    return Feedback(
-        progress=float(body.get("progress", 0.0)),
-        total=None if total is None else float(total),
-        message=str(body.get("message") or ""),
-        data=data_field,
-    )
+    try:
+        progress = float(body.get("progress", 0.0))
+        total_value = None if total is None else float(total)
+    except TypeError:  # a list or an object where a number belongs
+        raise ValueError("feedback 'progress' and 'total' must be numbers") from None
+    return Feedback(progress=progress, total=total_value, message=str(body.get("message") or ""), data=data_field)
 
 
 # --- node info -------------------------------------------------------------------------
