@@ -72,3 +72,13 @@ def test_the_gate_refuses_only_actuation_nobody_asked_for() -> None:
     assert refused is not None and refused["details"]["reason"] == "negated"
     negated = refusal(read_request("Don't drive to the kitchen."), NAV, {"target": "kitchen"})
     assert negated is not None and "not to do" in negated["hint"]
+
+
+def test_a_reference_nobody_resolved_is_not_guessed() -> None:
+    her = read_request("Call her.")
+    body = refusal(her, CALL, {"contact": "Clara"})
+    assert body is not None and body["details"]["reason"] == "unclear" and "ask them" in body["hint"]
+    assert refusal(her, CALL, {"contact": "Anna"}, said={"anna", "is", "coming"}) is None  # said before
+    assert refusal(read_request("I want to see Ben, can you call him?"), CALL, {"contact": "Ben"}) is None
+    there = refusal(read_request("Go over there."), NAV, {"target": "kitchen"})
+    assert there is not None and there["details"]["reason"] == "unclear"

@@ -5,7 +5,9 @@ action. An actuation tool the model calls is refused locally — it never reache
 when the user's words (`intent.read_request`) asked for no action at all (a negated or
 postponed request, an ability question, talk that merely mentions a place or a person), or
 when its arguments name only what the user said *not* to do ("don't call Anna, call Ben":
-a call to Anna). The model gets a structured ``not_requested`` tool error whose hint tells
+a call to Anna), or when the request points at something nobody named ("go there", "call
+her") and the model filled in a place or a person the conversation never mentioned. The
+model gets a structured ``not_requested`` tool error whose hint tells
 it how to answer instead, so the turn still ends with words the person understands.
 
 Audio given to an audio-capable model has no words to read: nothing is refused then.
@@ -14,7 +16,7 @@ Audio given to an audio-capable model has no words to read: nothing is refused t
 from __future__ import annotations
 
 import logging
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from typing import Any
 
 from robovoice.assistant.intent import ClauseKind, Intent, words
@@ -24,32 +26,42 @@ log = logging.getLogger(__name__)
 
 NOT_REQUESTED = "not_requested"
 
+UNCLEAR = "unclear"  # a reference the conversation does not resolve: "go there", "call her"
+
 _HINTS = {
-    ClauseKind.NEGATED: "The user asked you not to do this now. Do not do it. Acknowledge in one short sentence.",
-    ClauseKind.ABILITY: "The user only asked whether you can do this, not to do it now. Say in one short "
-                        "sentence that you can, if they ask you to.",
-    ClauseKind.STATEMENT: "The user did not ask you to do anything; they were telling you something. Reply "
-                          "kindly in one short sentence without using tools.",
-    ClauseKind.QUESTION: "The user asked a question, not for an action. Answer it in one short sentence.",
+    ClauseKind.NEGATED.value: "The user asked you not to do this now. Do not do it. Acknowledge in one short "
+                              "sentence.",
+    ClauseKind.ABILITY.value: "The user only asked whether you can do this, not to do it now. Say in one short "
+                              "sentence that you can, if they ask you to.",
+    ClauseKind.STATEMENT.value: "The user did not ask you to do anything; they were telling you something. Reply "
+                                "kindly in one short sentence without using tools.",
+    ClauseKind.QUESTION.value: "The user asked a question, not for an action. Answer it in one short sentence.",
+    UNCLEAR: "The user did not say which one they mean. Do not guess: ask them in one short question.",
 }
 
 
-def refusal(intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any]) -> dict[str, Any] | None:
-    """The ``{error, message, hint, details}`` body that refuses this call, or None to let it run."""
+def refusal(
+    intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = ()
+) -> dict[str, Any] | None:
+    """The ``{error, message, hint, details}`` body that refuses this call, or None to let it run.
+    `said`: the words of the conversation so far (what a "there" or a "her" can refer to)."""
     if intent is None or (spec is not None and spec.read_only):
         return None
     name = spec.name if spec is not None else "?"
-    why = intent.refusal
+    kind = intent.refusal
+    why = kind.value if kind is not None else None
     if why is None:
-        negated = intent.negated_words()
         named = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
-        if not named or not set(named) <= negated:
+        if named and set(named) <= intent.negated_words():
+            why = ClauseKind.NEGATED.value
+        elif named and intent.refers and not set(named) <= (set(said) | set(intent.words())):
+            why = UNCLEAR  # "call her": nobody in the conversation is her
+        else:
             return None
-        why = ClauseKind.NEGATED
-    log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why.value)
+    log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
     return {
         "error": NOT_REQUESTED,
-        "message": f"not done: the user did not ask for {name} now ({why.value})",
+        "message": f"not done: the user did not ask for {name} now ({why})",
         "hint": _HINTS[why],
-        "details": {"tool": name, "reason": why.value},
+        "details": {"tool": name, "reason": why},
     }

@@ -69,11 +69,22 @@ class Intent:
                 return kind
         return ClauseKind.QUESTION if self.clauses else None
 
+    @property
+    def refers(self) -> bool:
+        """A request points at something by a word that names nothing ("go there", "call her")."""
+        return any(c.kind is ClauseKind.REQUEST and _REFERENCE.search(c.text) for c in self.clauses)
+
+    def words(self) -> set[str]:
+        return {w for c in self.clauses for w in words(c.text)}
+
     def negated_words(self) -> set[str]:
         """Words said only in negated clauses (what the user asked *not* to do)."""
         negated = {w for c in self.clauses if c.kind is ClauseKind.NEGATED for w in words(c.text)}
         asked = {w for c in self.clauses if c.kind is ClauseKind.REQUEST for w in words(c.text)}
         return negated - asked
+
+
+_REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person)\b", re.IGNORECASE)
 
 
 def words(text: str) -> list[str]:
@@ -84,11 +95,10 @@ def words(text: str) -> list[str]:
 
 # Sentence ends, commas/semicolons, and the conjunctions that join requests.
 _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
-    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+",
+    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*"
+    r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+",
     re.IGNORECASE,
 )
-
-
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
 
 

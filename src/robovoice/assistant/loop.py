@@ -27,7 +27,7 @@ from robovoice.assistant.events import (
     notify,
 )
 from robovoice.assistant.gate import NOT_REQUESTED, refusal
-from robovoice.assistant.intent import Intent, read_request
+from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
@@ -121,6 +121,8 @@ class Assistant:
         answering = bool(self._history) and self._history[-1].text.rstrip().endswith("?")
         intent = read_request(user, answering=answering) if isinstance(user, str) else None
         asked = intent.steps if intent is not None else ()
+        # what a "there" or a "her" can refer to: what the person and the robot said before
+        said = {w for m in self._history if m.role in ("user", "assistant") for w in words(m.text)}
         max_steps = max(self.max_steps, len(asked) + 2)
         if len(asked) > 1:  # a compound request: one thing at a time, in the order asked
             messages.append(ChatMessage("user", f"One thing at a time, in order. First: {asked[0]}."))
@@ -149,7 +151,8 @@ class Assistant:
                 break
             by_name = {spec.name: spec for spec in specs}
             for request in requested:
-                called, returned = await self._run_tool(request, metrics, emit, intent, by_name.get(request.name))
+                called, returned = await self._run_tool(request, metrics, emit, intent, by_name.get(request.name),
+                                                        said)
                 calls.append(called)
                 outcomes.append(returned)
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
@@ -209,12 +212,12 @@ class Assistant:
 
     async def _run_tool(
         self, request: ToolCallRequested, metrics: TurnMetrics, emit: _Emit, intent: Intent | None,
-        spec: ToolSpec | None,
+        spec: ToolSpec | None, said: set[str],
     ) -> tuple[ToolCalled, ToolReturned]:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
-        refused = refusal(intent, spec, request.arguments)
+        refused = refusal(intent, spec, request.arguments, said)
         if refused is not None:  # the user did not ask for this: it never reaches the robot
             outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)
         elif request.arguments_error is not None:
