@@ -14,10 +14,11 @@ from .ros2_testkit import RosWorld, next_domain
 
 @pytest.fixture(scope="session", autouse=True)
 def ros2_installed() -> None:
-    """rclpy and the message packages (the ros2 extra), and nav2_msgs for the example robot."""
+    """rclpy and the message packages (the ros2 extra), robovoice_msgs (hosted nodes) and nav2_msgs (the example)."""
     require(importlib.util.find_spec("rclpy") is not None, "ROS 2 (rclpy)", "pip install 'robovoice[ros2]'")
-    require(importlib.util.find_spec("nav2_msgs") is not None, "nav2_msgs (NavigateToPose)",
-            "bash scripts/build_ros2_interfaces.sh")
+    for package in ("robovoice_msgs", "nav2_msgs"):
+        require(importlib.util.find_spec(package) is not None, f"the ROS 2 interface package {package}",
+                "bash scripts/build_ros2_interfaces.sh")
 
 
 @pytest.fixture

@@ -16,7 +16,7 @@ import logging
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from robovoice.errors import ConfigError, MissingDependencyError, NodeUnavailableError
+from robovoice.errors import ConfigError, MissingDependencyError, NodeUnavailableError, RobotFailure
 
 try:
     import rclpy  # noqa: F401  # the guarded import: the rest of the ros2_* modules need it
@@ -38,6 +38,7 @@ from robovoice.middleware.base import (
     NodeInfo,
     PresenceEvent,
     RpcHandler,
+    RpcKind,
 )
 from robovoice.middleware.ros2_bindings import NodeBinding, compile_manifest
 from robovoice.middleware.ros2_bridge import RosBridge
@@ -82,6 +83,7 @@ class Ros2Middleware:
         self._bridge: RosBridge | None = None
         self._presence: GraphPresence | None = None
         self._calls: Ros2Calls | None = None
+        self._hosts: list[Ros2NodeHost] = []
 
     @classmethod
     def from_uri(cls, uri: str) -> Ros2Middleware:
@@ -133,6 +135,9 @@ class Ros2Middleware:
             log.info("not in the ROS graph yet (their tools come when they do): %s", ", ".join(missing))
 
     async def close(self) -> None:
+        hosts, self._hosts = self._hosts, []
+        for host in hosts:
+            await host.leave()
         bridge, self._bridge = self._bridge, None
         if self._presence is not None:
             await self._presence.stop()
@@ -153,15 +158,22 @@ class Ros2Middleware:
                    actions: Mapping[str, ActionHandler]) -> NodeHost:
         """Serve a robovoice node (the sim's) as a ROS 2 node with JSON interfaces (`ros2_host`)."""
         bridge, _, _ = self._running()
-        return Ros2NodeHost(bridge, info, rpcs, actions)
+        host = Ros2NodeHost(bridge, info, rpcs, actions)
+        self._hosts.append(host)
+        return host
 
     # --- client side ----------------------------------------------------------------------
-    def _hosted(self, node: str, rpc: str) -> None:
+    def _hosted(self, node: str, rpc: str, kind: RpcKind) -> None:
         info = self.nodes().get(node)
-        if info is None or info.rpc(rpc) is None:
-            raise NodeUnavailableError(
-                f"node {node!r} is not available" if info is None else f"node {node!r} has no RPC {rpc!r}",
-                hint="the robot part is offline; tell the user", details={"node": node, "rpc": rpc})
+        if info is None:
+            raise NodeUnavailableError(f"node {node!r} is not available", hint="the robot part is offline; tell "
+                                       "the user", details={"node": node, "rpc": rpc})
+        found = info.rpc(rpc)
+        if found is None or found.kind != kind:
+            what = "RPC" if kind == "rpc" else "action"
+            raise RobotFailure(f"node {node!r} has no {what} {rpc!r}", code="unknown_rpc",
+                               hint="this is a fault in the robot's manifests; tell the user",
+                               details={"node": node, "rpc": rpc})
 
     def _binding(self, node: str, rpc: str) -> Any:
         _, presence, _ = self._running()
@@ -176,7 +188,7 @@ class Ros2Middleware:
     async def call(self, node: str, rpc: str, args: Mapping[str, JSON], *, timeout: float) -> JSON:
         _, presence, calls = self._running()
         if presence.is_hosted(node):
-            self._hosted(node, rpc)
+            self._hosted(node, rpc, "rpc")
             return await calls.call_json(node, rpc, args, timeout=timeout)
         binding = self._binding(node, rpc)
         return await self._running()[2].call(node, binding, args, timeout=timeout)
@@ -185,7 +197,7 @@ class Ros2Middleware:
                          on_feedback: FeedbackSender, timeout: float) -> JSON:
         _, presence, calls = self._running()
         if presence.is_hosted(node):
-            self._hosted(node, action)
+            self._hosted(node, action, "action")
             return await calls.run_json(node, action, args, on_feedback=on_feedback, timeout=timeout)
         binding = self._binding(node, action)
         return await self._running()[2].run_action(node, binding, args, on_feedback=on_feedback,

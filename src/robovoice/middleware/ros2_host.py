@@ -52,6 +52,11 @@ def ros_part(name: str) -> str:
     return token if token[:1].isalpha() else f"n{token}"
 
 
+def host_node_name(node: str) -> str:
+    """The ROS node name of a hosted robovoice node."""
+    return f"robovoice_{ros_part(node)}"
+
+
 def rpc_name(node: str, rpc: str) -> str:
     return f"/robovoice/{ros_part(node)}/{ros_part(rpc)}"
 
@@ -109,7 +114,7 @@ class Ros2NodeHost:
         self._bridge = bridge
         self._info = info
         self._loop = asyncio.get_running_loop()
-        node = rclpy.create_node(f"robovoice_{ros_part(info.name)}", context=bridge.context,
+        node = rclpy.create_node(host_node_name(info.name), context=bridge.context,
                                  enable_rosout=False, start_parameter_services=False)
         self._node: Node | None = node
         group = ReentrantCallbackGroup()
@@ -124,6 +129,7 @@ class Ros2NodeHost:
                          result_service_qos_profile=SERVICES, cancel_service_qos_profile=SERVICES)
             for name, handler in actions.items()
         ]
+        self._running: set[concurrent.futures.Future[JSON]] = set()
         self._publishers: dict[str, Any] = {}
         for topic in info.topics:
             self._publishers[topic] = node.create_publisher(String, topic_name(topic), 10)
@@ -148,19 +154,35 @@ class Ros2NodeHost:
         node, self._node = self._node, None
         if node is None:
             return
+        for running in list(self._running):  # callers get node_unavailable; the threads come free
+            running.cancel()
         self._bridge.host_executor().remove_node(node)
         for server in self._servers:
             server.destroy()
         await asyncio.to_thread(node.destroy_node)
 
+    def _failure(self, exc: BaseException) -> str:
+        if self._node is None:  # cancelled by leave()
+            return json.dumps({"error": "node_unavailable", "message": f"node {self._info.name!r} left",
+                               "hint": "the robot part went offline; tell the user", "details": {}})
+        return _failure_json(exc)
+
+    def _start(self, work: Awaitable[JSON]) -> concurrent.futures.Future[JSON]:
+        done = asyncio.run_coroutine_threadsafe(_coroutine(work), self._loop)
+        self._running.add(done)
+        return done
+
     def _service(self, handler: RpcHandler) -> Any:
         def serve(request: Any, response: Any) -> Any:  # on a host executor thread
             try:
                 args = json.loads(request.arguments or "{}")
-                done = asyncio.run_coroutine_threadsafe(_coroutine(handler(args)), self._loop)
-                response.result = json.dumps(done.result(HOST_CALL_S), default=str)
+                done = self._start(handler(args))
+                try:
+                    response.result = json.dumps(done.result(HOST_CALL_S), default=str)
+                finally:
+                    self._running.discard(done)
             except BaseException as exc:  # every failure goes back to the caller as a JSON error
-                response.error = _failure_json(exc)
+                response.error = self._failure(exc)
             return response
         return serve
 
@@ -174,17 +196,18 @@ class Ros2NodeHost:
                     progress=float(item.progress), total=math.nan if item.total is None else float(item.total),
                     message=item.message, data=json.dumps(dict(item.data), default=str)))
 
-            done = asyncio.run_coroutine_threadsafe(_coroutine(handler(args, feedback)), self._loop)
+            done = self._start(handler(args, feedback))
             while not done.done():
                 if goal.is_cancel_requested:
                     done.cancel()
                     break
                 time.sleep(0.02)
+            self._running.discard(done)
             try:
                 result.result = json.dumps(done.result(HOST_CALL_S), default=str)
                 goal.succeed()
             except BaseException as exc:  # cancelled, a robot failure, a bug: the caller gets JSON
-                result.error = _failure_json(exc)
+                result.error = self._failure(exc)
                 if goal.is_cancel_requested:
                     goal.canceled()
                 else:

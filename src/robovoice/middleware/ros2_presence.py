@@ -17,7 +17,7 @@ from collections.abc import Callable, Mapping
 from robovoice.middleware.base import NodeInfo, NodeJoined, NodeLeft, PresenceEvent
 from robovoice.middleware.ros2_bindings import NodeBinding
 from robovoice.middleware.ros2_bridge import RosBridge
-from robovoice.middleware.ros2_host import rpc_name, topic_name
+from robovoice.middleware.ros2_host import host_node_name, rpc_name
 
 log = logging.getLogger(__name__)
 
@@ -81,10 +81,12 @@ class GraphPresence:
                 and all(self.action_up(a) for a in binding.actions)
                 and all(self.topic_up(t) for t in binding.topics))
 
-    def _hosted_up(self, info: NodeInfo) -> bool:
-        return (all((self.action_up if r.kind == "action" else self.service_up)(rpc_name(info.name, r.name))
-                    for r in info.rpcs)
-                and all(self.topic_up(topic_name(t)) for t in info.topics))
+    def _hosted_up(self, info: NodeInfo, graph_nodes: set[str]) -> bool:
+        """The hosted node's own ROS node is in the graph, with every service and action server
+        (its topics may be shared with other nodes: they say nothing about this one)."""
+        return (host_node_name(info.name) in graph_nodes
+                and all((self.action_up if r.kind == "action" else self.service_up)(rpc_name(info.name, r.name))
+                        for r in info.rpcs))
 
     def announce(self, info: NodeInfo) -> None:
         """A hosted robovoice node announced itself (it counts once its interfaces are in the graph)."""
@@ -104,8 +106,10 @@ class GraphPresence:
     def poll(self) -> None:
         """Compare the graph with what was present; tell the watchers what changed."""
         candidates = [(name, b.info, self._up(b)) for name, b in self._bindings.items()]
-        candidates += [(name, info, self._hosted_up(info)) for name, info in self._announced.items()
-                       if name not in self._bindings]
+        if self._announced:
+            graph_nodes = {name for name, _ in self._bridge.node.get_node_names_and_namespaces()}
+            candidates += [(name, info, self._hosted_up(info, graph_nodes)) for name, info in self._announced.items()
+                           if name not in self._bindings]
         for name, info, up in candidates:
             if up and name not in self._present:
                 self._present[name] = info
