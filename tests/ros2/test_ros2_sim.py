@@ -82,3 +82,43 @@ async def test_the_sim_robot_on_ros2_serves_the_same_tools(ros: RosWorld) -> Non
         await served.notes.wait_for(changes + 1)
         await wait_tools(served, set())
         assert time.monotonic() - killed < 6.0
+
+
+async def test_eval_against_the_sim_on_ros2_scores_as_in_process(ros: RosWorld) -> None:
+    """`robovoice eval … --robot ros2://…` with the sim's nodes in another process (a scripted
+    model: the scoring and the robot are what is tested, not the model)."""
+    import json
+    import subprocess
+
+    from robovoice.llm.fake_server import (
+        CallbackReply,
+        FakeOpenAIServer,
+        RecordedRequest,
+        ScriptedCall,
+        TextReply,
+        ToolCallReply,
+    )
+
+    from .ros2_testkit import ROOT, ros_env
+
+    sim = ros.spawn([sys.executable, "-m", "robovoice.cli", "sim", "--middleware", f"ros2://?domain_id={ros.domain}",
+                     "--speed", "50"])
+    await sim.ready("robovoice sim: ready", bound=30)
+
+    def reply(request: RecordedRequest) -> ToolCallReply | TextReply:
+        if request.messages[-1]["role"] == "tool":
+            return TextReply("Done.")
+        if "kitchen" in request.last_user_text.lower():
+            return ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),))
+        return TextReply("Hello!")
+
+    async with FakeOpenAIServer([], default=CallbackReply(reply)) as llm:
+        run = await asyncio.to_thread(
+            subprocess.run, [sys.executable, "-m", "robovoice.cli", "eval", str(ROOT / "tests/data/eval/text.jsonl"),
+                             "--robot", f"ros2://?domain_id={ros.domain}", "--only", "nav-kitchen-1",
+                             "--only", "chat-1", "--only", "proj-on-1", "--llm", llm.base_url, "--model", llm.model,
+                             "--json"],
+            cwd=ROOT, capture_output=True, text=True, env=ros_env(ros.domain, ros.log_dir), timeout=240, check=False)
+    assert run.returncode == 0, run.stderr
+    summary = json.loads(run.stdout)
+    assert summary["cases"] == 3 and summary["passed"] == 2  # as tests/test_cli_assistant.py in-process
