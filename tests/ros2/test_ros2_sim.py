@@ -76,6 +76,11 @@ async def test_the_sim_robot_on_ros2_serves_the_same_tools(ros: RosWorld) -> Non
         actions = dict(served.middleware.graph_actions())
         assert "robovoice_msgs/action/Run" in actions["/robovoice/navigation/drive_to"]
 
+        # and a plain rclpy process sees the battery as sensor_msgs/BatteryState (a standard mirror)
+        plain = ros.spawn([sys.executable, "-c", _PLAIN_BATTERY])
+        line = await plain.ready("battery", bound=BOUND_S)
+        assert 0.0 < float(line.split()[1]) <= 1.0
+
         changes = served.notes.changes
         sim.kill()
         killed = time.monotonic()
@@ -122,3 +127,15 @@ async def test_eval_against_the_sim_on_ros2_scores_as_in_process(ros: RosWorld) 
     assert run.returncode == 0, run.stderr
     summary = json.loads(run.stdout)
     assert summary["cases"] == 3 and summary["passed"] == 2  # as tests/test_cli_assistant.py in-process
+
+
+_PLAIN_BATTERY = """
+import rclpy
+from sensor_msgs.msg import BatteryState
+rclpy.init()
+node = rclpy.create_node("plain_listener")
+def got(msg):
+    print("battery", msg.percentage, flush=True)
+node.create_subscription(BatteryState, "/battery_state", got, 10)
+rclpy.spin(node)
+"""

@@ -27,6 +27,7 @@ from typing import Any
 from robovoice.errors import MiddlewareError, RobotFailure
 from robovoice.middleware.base import JSON, ActionHandler, Feedback, NodeInfo, RpcHandler, RpcInfo
 from robovoice.middleware.ros2_bridge import RosBridge
+from robovoice.middleware.ros2_standard import MIRRORS, mirrored
 
 import rclpy  # isort: skip
 from rclpy.action.server import ActionServer, CancelResponse, GoalResponse, ServerGoalHandle
@@ -131,6 +132,7 @@ class Ros2NodeHost:
         ]
         self._running: set[concurrent.futures.Future[JSON]] = set()
         self._publishers: dict[str, Any] = {}
+        self._mirrors: dict[str, Any] = {}
         for topic in info.topics:
             self._publishers[topic] = node.create_publisher(String, topic_name(topic), 10)
         self._announcer = node.create_publisher(String, ANNOUNCE_TOPIC, ANNOUNCE_QOS)
@@ -147,8 +149,15 @@ class Ros2NodeHost:
         publisher = self._publishers.get(topic)
         if publisher is None:
             publisher = self._publishers[topic] = self._node.create_publisher(String, topic_name(topic), 10)
-        body = {"value": value, "stamp": time.time() if stamp is None else stamp}
-        publisher.publish(String(data=json.dumps(body, default=str)))
+        when = time.time() if stamp is None else stamp
+        publisher.publish(String(data=json.dumps({"value": value, "stamp": when}, default=str)))
+        standard = mirrored(topic, value, when)
+        if standard is not None:
+            mirror = self._mirrors.get(topic)
+            if mirror is None:
+                mirror = self._mirrors[topic] = self._node.create_publisher(
+                    type(standard), MIRRORS[topic].ros_topic, 10)
+            mirror.publish(standard)
 
     async def leave(self) -> None:
         node, self._node = self._node, None
