@@ -11,6 +11,7 @@ import httpx
 import pytest
 from websockets.asyncio.client import connect
 from websockets.exceptions import InvalidStatus
+from websockets.typing import Origin
 
 from robovoice.console.serve import check_console_bind
 from robovoice.errors import ConfigError
@@ -104,10 +105,10 @@ async def test_foreign_origin_is_refused_on_the_page_the_api_and_the_websocket()
         assert (await http.get("/", headers=own)).status_code == 200
         for path in ("/ws/events", "/ws/audio"):
             with pytest.raises(InvalidStatus) as refused:
-                async with connect(f"{run.ws_base}{path}", origin="http://evil.example"):  # type: ignore[arg-type]
+                async with connect(f"{run.ws_base}{path}", origin=Origin("http://evil.example")):
                     pass
             assert refused.value.response.status_code == 403
-        async with connect(f"{run.ws_base}/ws/events", origin=run.base) as ws:  # type: ignore[arg-type]
+        async with connect(f"{run.ws_base}/ws/events", origin=Origin(run.base)) as ws:
             assert (await next_message(ws, lambda m: m["type"] == "hello"))["robot_name"]
 
 

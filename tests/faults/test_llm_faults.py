@@ -68,7 +68,7 @@ def with_robot(test: Callable[..., Awaitable[None]]) -> Callable[..., Awaitable[
             await test(robot=robot, **kwargs)
 
     signature = inspect.signature(test)
-    run.__signature__ = signature.replace(  # type: ignore[attr-defined]
+    run.__signature__ = signature.replace(  # type: ignore[attr-defined]  # pytest reads it for fixtures
         parameters=[p for p in signature.parameters.values() if p.name != "robot"])
     return run
 

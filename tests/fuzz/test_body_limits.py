@@ -22,7 +22,7 @@ async def echo(request: Request) -> JSONResponse:
 
 def _client(**options: object) -> TestClient:
     return TestClient(BodyLimits(Starlette(routes=[Route("/", echo, methods=["GET", "POST"])]), max_bytes=1000,
-                                 max_depth=5, **options))  # type: ignore[arg-type]
+                                 max_depth=5, **options))  # type: ignore[arg-type]  # any of its keyword options
 
 
 def test_depth_ignores_brackets_in_strings_and_counts_both_kinds() -> None:

@@ -67,7 +67,7 @@ def _record(**changes: object) -> AuditRecord:
         rpc=None, arguments={}, outcome="ok", result={"image": {"mime_type": "image/jpeg"}, "data": "x" * 1000},
         error=None, duration_ms=1.23456)
     fields.update(changes)
-    return AuditRecord(**fields)  # type: ignore[arg-type]
+    return AuditRecord(**fields)  # type: ignore[arg-type]  # a record's fields from a dict of mixed values
 
 
 def test_audit_log_appends_one_json_line_per_call(tmp_path: Path) -> None:

@@ -25,6 +25,7 @@ from robovoice.mcp_server.tcp import listen_tcp, nodelay_transport
 
 from .mcp_testkit import Progress
 
+# About the machine (a platform without /proc), not a missing install:
 pytestmark = pytest.mark.skipif(not Path("/proc/self/fd").is_dir(), reason="finds sockets through /proc")
 
 

@@ -308,7 +308,7 @@ async def test_the_speculative_transcript_is_used_one_stt_run_per_command(
         for n, said in enumerate(("Hey Jarvis, turn on the projector.", "Hey Jarvis, turn it off."), start=1):
             transcriber.text = said
             await s.say(wake_command(), gap_s=0.8)
-            await s.log.wait_for(VoiceTurnFinished, lambda e, n=n: e.turn == n)  # type: ignore[misc]
+            await s.log.wait_for(VoiceTurnFinished, lambda e, n=n: e.turn == n)  # type: ignore[misc]  # n bound per turn
             await s.settle()
             # started at the pause (inside the end-of-turn silence), and that run was the one used
             assert (transcriber.calls, stt.speculated, stt.reused) == (n, n, n)

@@ -172,7 +172,8 @@ async def test_a_video_calls_remote_voice_does_not_trigger(voice_models: VoiceMo
         state = s.sim.state
     assert s.log.of(WakeWordRejected), "the remote's wake phrase was heard and rejected"
     assert not state.in_call and state.nearest_place == "charging dock"
-    assert [c.name for c in s.log.of(VoiceTurnFinished)[0].result.calls] == ["end_video_call"]  # type: ignore[union-attr]
+    result = s.log.of(VoiceTurnFinished)[0].result
+    assert result is not None and [c.name for c in result.calls] == ["end_video_call"]
 
 
 @pytest.mark.slow

@@ -176,8 +176,8 @@ class EchoCanceller:
         self.copies = 0  # how often the background filter was promoted (for tests and logs)
 
     def reset(self) -> None:
-        self.__init__(block=self.block, partitions=self.partitions, step=self.step,  # type: ignore[misc]
-                      smoothing=self._smoothing)
+        self.__init__(  # type: ignore[misc]  # reset = the state of a fresh instance, same settings
+            block=self.block, partitions=self.partitions, step=self.step, smoothing=self._smoothing)
 
     @property
     def tail_s(self) -> float:
