@@ -19,7 +19,6 @@ import contextlib
 import json
 import os
 import signal
-import statistics
 import subprocess
 import sys
 import tempfile
@@ -30,6 +29,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
+from robovoice.middleware.bench_stats import BLOCK, Stats
 from robovoice.middleware.ros2 import Ros2Middleware
 from robovoice.middleware.ros2_bridge import write_profile
 
@@ -39,20 +39,8 @@ IMAGE_BYTES = 50_000
 IMAGE_HZ = 30.0
 
 
-BLOCK = 50  # calls per interleaved block
 
 
-@dataclass(frozen=True, slots=True)
-class Stats:
-    n: int
-    median_ms: float
-    p95_ms: float
-
-    @classmethod
-    def of(cls, seconds: list[float]) -> Stats:
-        ordered = sorted(seconds)
-        p95 = ordered[min(len(ordered) - 1, round(0.95 * (len(ordered) - 1)))]
-        return cls(len(ordered), statistics.median(ordered) * 1000, p95 * 1000)
 
 
 @dataclass(frozen=True, slots=True)

@@ -22,7 +22,6 @@ import asyncio
 import contextlib
 import json
 import os
-import statistics
 import subprocess
 import sys
 import time
@@ -32,27 +31,16 @@ from dataclasses import asdict, dataclass
 import zenoh
 
 from robovoice.middleware.base import JSON, Message, NodeInfo, RpcInfo
+from robovoice.middleware.bench_stats import BLOCK, Stats
 from robovoice.middleware.zenoh import ZenohMiddleware
 from robovoice.middleware.zenoh_bridge import close_session
 from robovoice.snapshot.store import SnapshotStore
 
 RAW_KEY = "robovoice-bench/ping"
-BLOCK = 50  # calls per interleaved block
 GOAL_OVER_BARE_MS = 0.25  # an RPC's median may exceed the bare get's by this much
 POSE = {"x": 2.25, "y": 6.5, "heading": 1.57, "nearest_place": "kitchen", "moving": True}
 
 
-@dataclass(frozen=True, slots=True)
-class Stats:
-    n: int
-    median_ms: float
-    p95_ms: float
-
-    @classmethod
-    def of(cls, seconds: list[float]) -> Stats:
-        ordered = sorted(seconds)
-        p95 = ordered[min(len(ordered) - 1, round(0.95 * (len(ordered) - 1)))]
-        return cls(len(ordered), statistics.median(ordered) * 1000, p95 * 1000)
 
 
 @dataclass(frozen=True, slots=True)
