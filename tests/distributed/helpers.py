@@ -30,10 +30,10 @@ def free_port() -> int:
 class Child:
     """A child process whose output lines are collected by a thread."""
 
-    def __init__(self, name: str, argv: list[str]) -> None:
+    def __init__(self, name: str, argv: list[str], env: dict[str, str] | None = None) -> None:
         self.name = name
         self.argv = argv
-        env = dict(os.environ, PYTHONUNBUFFERED="1")
+        env = dict(os.environ if env is None else env, PYTHONUNBUFFERED="1")
         self.proc = subprocess.Popen(argv, cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                                      text=True, start_new_session=True)
         self.lines: list[str] = []
@@ -74,6 +74,9 @@ class Child:
         if self.proc.poll() is None:
             os.killpg(self.proc.pid, signal.SIGKILL)
         self.proc.wait(5)
+        self._reader.join(2)
+        if self.proc.stdout is not None and not self._reader.is_alive():
+            self.proc.stdout.close()  # no ResourceWarning (pytest -W error)
 
     def stop(self, bound: float = 5.0) -> int:
         """SIGTERM, then SIGKILL if it does not exit within `bound` seconds; the exit status."""

@@ -7,11 +7,9 @@ import asyncio
 import itertools
 import json
 import os
-import queue
 import signal
 import subprocess
 import sys
-import threading
 import time
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager, suppress
@@ -20,13 +18,14 @@ from pathlib import Path
 from typing import Any
 
 import mcp_types as types
-import pytest
 from mcp import Client
 
 from robovoice.mcp_server.audit import AuditLog
 from robovoice.mcp_server.server import RobotToolServer
 from robovoice.middleware.ros2 import Ros2Middleware
 from robovoice.middleware.ros2_bridge import write_profile
+
+from ..distributed.helpers import Child
 
 ROOT = Path(__file__).resolve().parents[2]
 HERE = Path(__file__).resolve().parent
@@ -53,36 +52,11 @@ def ros_env(domain: int, log_dir: Path) -> dict[str, str]:
                 PYTHONUNBUFFERED="1")
 
 
-class Foreign:
+class Foreign(Child):
     """A plain rclpy process (tests/ros2/foreign_nodes.py, or any argv) whose lines are collected."""
 
     def __init__(self, argv: list[str], env: dict[str, str]) -> None:
-        self.proc = subprocess.Popen(argv, cwd=ROOT, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                     text=True, start_new_session=True)
-        self.lines: list[str] = []
-        self._queue: queue.Queue[str | None] = queue.Queue()
-        self._reader = threading.Thread(target=self._read, daemon=True)
-        self._reader.start()
-
-    def _read(self) -> None:
-        assert self.proc.stdout is not None
-        for line in self.proc.stdout:
-            self.lines.append(line.rstrip("\n"))
-            self._queue.put(line.rstrip("\n"))
-        self._queue.put(None)
-
-    def wait_for_line(self, needle: str, bound: float = BOUND_S) -> str:
-        deadline = time.monotonic() + bound
-        while (left := deadline - time.monotonic()) > 0:
-            try:
-                line = self._queue.get(timeout=left)
-            except queue.Empty:
-                break
-            if line is None:
-                pytest.fail(f"{self.proc.args!r} exited ({self.proc.wait()}) before {needle!r}:\n" + self.output())
-            if needle in line:
-                return line
-        pytest.fail(f"{self.proc.args!r} did not print {needle!r} within {bound} s:\n" + self.output())
+        super().__init__(" ".join(Path(a).name for a in argv[1:3]) or argv[0], argv, env)
 
     async def ready(self, needle: str = "ready", bound: float = BOUND_S) -> str:
         return await asyncio.to_thread(self.wait_for_line, needle, bound)
@@ -98,23 +72,14 @@ class Foreign:
             await asyncio.sleep(0.01)
         return found
 
-    def output(self) -> str:
-        return "\n".join(self.lines[-60:])
-
-    def kill(self) -> None:
-        if self.proc.poll() is None:
-            os.killpg(self.proc.pid, signal.SIGKILL)
-        self.proc.wait(5)
-        self._reader.join(2)
-        if self.proc.stdout is not None:
-            self.proc.stdout.close()
-
-    def stop(self) -> None:
+    def stop(self, bound: float = 5.0) -> int:
+        """SIGTERM to the whole process group (a launcher and its nodes), then SIGKILL."""
         if self.proc.poll() is None:
             os.killpg(self.proc.pid, signal.SIGTERM)
             with suppress(subprocess.TimeoutExpired):
-                self.proc.wait(5)
+                self.proc.wait(bound)
         self.kill()
+        return self.proc.returncode
 
 
 @dataclass
