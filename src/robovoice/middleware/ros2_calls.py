@@ -241,9 +241,17 @@ class _Plain:
 
 
 def _json_outcome(result: str, error: str) -> JSON:
-    if error:
-        raise RobotFailure.from_dict(json.loads(error))
-    return json.loads(result) if result else None
+    """A hosted node's JSON reply: its value, or its structured failure raised. A reply that is
+    not what a robovoice node sends (bad JSON, an error that is no object) is an `internal_error`."""
+    try:
+        if error:
+            body = json.loads(error)
+            if not isinstance(body, dict):
+                raise ValueError("the error is not a JSON object")
+            raise RobotFailure.from_dict(body)
+        return json.loads(result) if result else None
+    except ValueError as exc:  # json.JSONDecodeError included
+        raise RobotFailure(f"malformed reply from the node: {exc}", code="internal_error") from None
 
 
 async def _relay_plain(queue: asyncio.Queue[Feedback], on_feedback: FeedbackSender) -> None:
