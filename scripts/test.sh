@@ -11,4 +11,14 @@ echo "[test] ruff check src tests"
 echo "[test] mypy --strict src tests"
 .venv/bin/mypy --strict src tests
 bash scripts/conformance.sh
-.venv/bin/python -m pytest -q "$@"
+# pytest's summary closes the output: files that libraries keep open for their whole life
+# (llama-cpp-python's two on /dev/null) may be reported after it as the interpreter exits, so
+# the summary line is repeated last, and pytest's exit status is the script's.
+log=$(mktemp)
+set +e
+.venv/bin/python -m pytest -q "$@" 2>&1 | tee "$log"
+status=${PIPESTATUS[0]}
+set -e
+grep -E '^[0-9]+ [a-z]+.* in [0-9.]+s' "$log" | tail -1 || true
+rm -f "$log"
+exit "$status"

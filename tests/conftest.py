@@ -8,7 +8,6 @@ are session-scoped so that they run before any module-scoped fixture that would 
 from __future__ import annotations
 
 import shutil
-import warnings
 
 import pytest
 
@@ -39,9 +38,3 @@ def djpeg() -> str:
     assert path is not None
     return path
 
-
-def pytest_unconfigure(config: pytest.Config) -> None:
-    """After the session, the interpreter's default again: a file that a library keeps open
-    for its whole life (llama-cpp-python opens two on /dev/null at import) is closed by the
-    interpreter's exit without a warning, so pytest's summary stays the last line of the output."""
-    warnings.simplefilter("ignore", ResourceWarning)
