@@ -133,12 +133,6 @@ def _made_calls(
     return made
 
 
-async def _read_only_tools(tools: RobotTools) -> dict[str, bool]:
-    """Which tools declare themselves read-only (they cannot be false actuations)."""
-    listing = await tools.client.list_tools()
-    return {t.name: bool(t.annotations and t.annotations.read_only_hint) for t in listing.tools}
-
-
 async def run_case(
     case: Case, backend: LLMBackend, open_robot: OpenRobot, audio: ClipRunner | None = None
 ) -> CaseResult:
@@ -146,7 +140,9 @@ async def run_case(
     async with open_robot() as link:
         if case.setup:
             await link.apply_setup(case.setup)
-        read_only = await _read_only_tools(link.tools)
+        # which tools declare themselves read-only (they cannot be false actuations); the list
+        # is the one the assistant fetches for its first turn anyway
+        read_only = {spec.name: spec.read_only for spec in await link.tools.specs()}
         if case.audio is not None:
             if audio is None:
                 return CaseResult(case.id, False, "audio case but no voice pipeline available", [], "", {})
