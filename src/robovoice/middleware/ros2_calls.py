@@ -78,6 +78,18 @@ class Ros2Calls:
             self._actions[key] = client
         return client
 
+    async def _service_call(self, client: Client[Any, Any], request: Any, node: str, target: ToolBinding | _Plain,
+                            timeout: float, what: str) -> Any:
+        """One service call, bounded; a call given up on leaves no pending request behind."""
+        future = client.call_async(request)
+        waiter = self._bridge.wait(future)
+        try:
+            return await self._await(waiter, self._presence.service_up, node, target, time.monotonic() + timeout, what)
+        except BaseException:
+            waiter.cancel()
+            client.remove_pending_request(future)
+            raise
+
     async def _await(self, waiter: asyncio.Future[Any], up: Any, node: str, binding: ToolBinding | _Plain,
                      deadline: float, what: str) -> Any:
         """Wait for `waiter` until `deadline`, failing early when the server leaves the graph."""
@@ -99,16 +111,8 @@ class Ros2Calls:
     async def call_json(self, node: str, rpc: str, args: Mapping[str, JSON], *, timeout: float) -> JSON:
         call_type, _ = interfaces()
         target = _Plain(rpc_name(node, rpc), rpc, call_type)
-        client = self._plain_client(target)
-        deadline = time.monotonic() + timeout
-        future = client.call_async(call_type.Request(arguments=json.dumps(dict(args), default=str)))
-        waiter = self._bridge.wait(future)
-        try:
-            response = await self._await(waiter, self._presence.service_up, node, target, deadline, "call")
-        except BaseException:
-            waiter.cancel()
-            client.remove_pending_request(future)
-            raise
+        request = call_type.Request(arguments=json.dumps(dict(args), default=str))
+        response = await self._service_call(self._plain_client(target), request, node, target, timeout, "call")
         return _json_outcome(response.result, response.error)
 
     async def run_json(self, node: str, action: str, args: Mapping[str, JSON], *, on_feedback: FeedbackSender,
@@ -170,16 +174,7 @@ class Ros2Calls:
 
     async def call(self, node: str, binding: ToolBinding, args: Mapping[str, JSON], *, timeout: float) -> JSON:
         request = binding.build_request(args)  # checked before anything is sent
-        client = self._client(binding)
-        deadline = time.monotonic() + timeout
-        future = client.call_async(request)
-        waiter = self._bridge.wait(future)
-        try:
-            response = await self._await(waiter, self._presence.service_up, node, binding, deadline, "service call")
-        except BaseException:
-            waiter.cancel()
-            client.remove_pending_request(future)
-            raise
+        response = await self._service_call(self._client(binding), request, node, binding, timeout, "service call")
         return _outcome(binding, to_json(response), node)
 
     async def run_action(self, node: str, binding: ToolBinding, args: Mapping[str, JSON], *,
