@@ -25,7 +25,7 @@ EXTRA_PACKAGES = (
 #: Module name prefixes that belong to an extra (voice: audio and the voice pipeline; zenoh; ros2).
 EXTRA_MODULES = (
     "robovoice.audio.", "robovoice.voice.", "robovoice.middleware.zenoh", "robovoice.middleware.bench_zenoh",
-    "robovoice.middleware.ros2", "robovoice.middleware.bench_ros2",
+    "robovoice.middleware.ros2", "robovoice.middleware.bench_ros2", "robovoice.soak",
 )
 
 CHILD = textwrap.dedent("""

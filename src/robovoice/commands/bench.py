@@ -70,6 +70,18 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     load.add_argument("--middleware", choices=["memory", "zenoh"], default="memory", help="where the nodes are")
     load.set_defaults(run=_load)
 
+    soak = sub.add_parser("soak", help="the whole embedded assistant hearing hours of a home (television, music, "
+                                       "noise, commands) in accelerated stream time; memory, fds, threads, tasks")
+    soak.add_argument("--hours", type=positive_float, default=2.0, help="simulated hours (default 2)")
+    soak.add_argument("--seed", type=int, default=1, help="the script's random seed (default 1)")
+    soak.add_argument("--gap-minutes", type=positive_float, default=3.0,
+                      help="mean simulated minutes between commands (default 3)")
+    soak.add_argument("--sample-minutes", type=positive_float, default=5.0,
+                      help="simulated minutes between process samples (default 5)")
+    soak.add_argument("--plot", type=Path, help="write the memory plot (PNG) here")
+    soak.add_argument("--json", action="store_true", help="print the whole report as JSON, samples included")
+    soak.set_defaults(run=_soak)
+
 
 def _machine() -> dict[str, Any]:
     model = ""
@@ -152,3 +164,10 @@ def _load(args: argparse.Namespace) -> int:
     from robovoice.mcp_server.bench_load import bench_load
 
     return _print(asyncio.run(bench_load(args.clients, args.calls, middleware=args.middleware)))
+
+
+def _soak(args: argparse.Namespace) -> int:
+    from robovoice.soak.cli import run_soak_command
+
+    return run_soak_command(hours=args.hours, seed=args.seed, gap_minutes=args.gap_minutes,
+                            sample_minutes=args.sample_minutes, plot=args.plot, as_json=args.json)

@@ -1,0 +1,62 @@
+"""A short soak (a few simulated minutes) through the real pipeline and voice models, the
+sim robot over MCP and the fake vLLM server routing by keywords: the report has its parts,
+commands were answered, nothing was left behind, and the plot is a PNG."""
+
+from __future__ import annotations
+
+import struct
+import zlib
+from collections.abc import AsyncIterator
+from pathlib import Path
+
+import pytest
+
+from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
+from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.soak import SoakSettings, run_soak, write_memory_plot
+from robovoice.soak.cli import summary
+from robovoice.voice.models import VoiceModels
+
+from ..voice.voice_kit import keyword_router
+
+pytestmark = [pytest.mark.integration, pytest.mark.timeout(300)]
+
+
+@pytest.fixture
+async def backend() -> AsyncIterator[OpenAICompatBackend]:
+    async with FakeOpenAIServer() as server:
+        server.default = CallbackReply(keyword_router)
+        b = OpenAICompatBackend(server.base_url, server.model)
+        yield b
+        await b.aclose()
+
+
+async def test_a_short_soak_answers_commands_and_reports(voice_models: VoiceModels, backend: OpenAICompatBackend,
+                                                         tmp_path: Path) -> None:
+    settings = SoakSettings(hours=4 / 60, seed=3, mean_gap_minutes=0.4, sample_minutes=0.5, warm_up_minutes=0.5)
+    report = await run_soak(voice_models, backend, settings)
+    data = report.to_dict()
+    assert set(data) >= {"ok", "commands", "false_wakes", "unasked_actions", "errors", "memory", "leaks", "stream",
+                         "samples", "wall_s", "sim_hours"}
+    assert report.sim_hours >= 4 / 60 - 1e-6
+    commands = report.commands
+    assert commands["given"] >= 3, commands
+    assert commands["answered"] >= commands["given"] - 1, summary(report)
+    assert sum(v["given"] for v in commands["by_kind"].values()) == commands["given"]
+    # faster than real time overall, and paced only while the assistant worked
+    assert report.stream["free_running_s"] > report.stream["paced_real_time_s"], report.stream
+    assert report.stream["speed_up"] > 1.0, report.stream
+    assert report.unasked_actions["count"] == 0, report.unasked_actions
+    assert report.errors["unhandled"] == [], report.errors
+    assert report.leaks["tasks_left"] <= 0 and report.leaks["threads_left"] <= 0, report.leaks
+    samples = report.samples
+    assert len(samples) >= 8 and all(s.rss_mib > 0 and s.heap_blocks > 0 and s.fds > 0 for s in samples)
+    assert [s.sim_s for s in samples[:-1]] == sorted(s.sim_s for s in samples[:-1])
+    png = write_memory_plot(report, tmp_path / "soak.png").read_bytes()
+    assert png.startswith(b"\x89PNG\r\n\x1a\n")
+    width, height = struct.unpack(">II", png[16:24])
+    assert (width, height) == (900, 780)
+    idat_len = struct.unpack(">I", png[33:37])[0]
+    raw = zlib.decompress(png[41:41 + idat_len])
+    assert len(raw) == height * (1 + 3 * width)
+    assert len(set(raw)) > 3  # lines and text were drawn on the white page
