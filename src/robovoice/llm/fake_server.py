@@ -7,10 +7,10 @@
         assert srv.requests[0].tool_names == ["navigate_to", ...]
 
 Each request to ``POST /v1/chat/completions`` takes the next scripted reply
-(or ``default`` once the script is used up). Streamed answers use vLLM's chunk
-layout: a role chunk, ``delta.content`` pieces, tool calls as a first delta with
-``id``/``type``/``function.name`` followed by ``function.arguments`` pieces,
-a final chunk with ``finish_reason``, an optional usage chunk, ``data: [DONE]``.
+(or ``default`` once the script is used up; the types are in `fake_script`).
+Streamed answers use vLLM's chunk layout (`fake_wire`); ``quirks=Quirks(...)``
+makes the instance answer like another real server instead (llama-cpp-python's
+missing finish reason, tool calls as text, a busy 429/503 with Retry-After, ...).
 One difference in timing only: the role chunk goes out at once (vLLM sends it
 with the first token), so clients are tested not to take it for a token.
 """
@@ -18,18 +18,14 @@ with the first token), so clients are tested not to take it for a token.
 from __future__ import annotations
 
 import asyncio
-import base64
 import contextlib
 import inspect
 import json
 import logging
 import socket
 import time
-import uuid
-from collections.abc import AsyncIterator, Awaitable, Callable, Iterable, Mapping
-from dataclasses import dataclass, field
+from collections.abc import AsyncIterator, Iterable
 from types import TracebackType
-from typing import Any
 
 import uvicorn
 from starlette.applications import Starlette
@@ -38,130 +34,30 @@ from starlette.responses import JSONResponse, Response, StreamingResponse
 from starlette.routing import Route
 
 from robovoice.errors import LLMError
+from robovoice.llm import fake_wire
+from robovoice.llm.fake_script import (
+    CallbackReply,
+    ConcreteReply,
+    ErrorReply,
+    Pacing,
+    Quirks,
+    RecordedRequest,
+    ScriptedCall,
+    ScriptedReply,
+    StreamCut,
+    TextCallStyle,
+    TextReply,
+    ToolCallReply,
+    reply_from_dict,
+)
+
+__all__ = [  # the script types are used from here, beside the server
+    "CallbackReply", "ConcreteReply", "ErrorReply", "FakeOpenAIServer", "Pacing", "Quirks", "RecordedRequest",
+    "ScriptedCall", "ScriptedReply", "StreamCut", "TextCallStyle", "TextReply", "ToolCallReply", "reply_from_dict",
+]
 
 log = logging.getLogger(__name__)
-
-# --- the script ---------------------------------------------------------------------
-
-
-class StreamCut(ConnectionResetError):
-    """Raised inside a streamed response to reset the connection mid-body (`Pacing.cut_hard`)."""
-
-
-@dataclass(frozen=True, slots=True)
-class Pacing:
-    """When chunks go out. Stalls end early when the server shuts down."""
-
-    headers_delay_s: float = 0.0  # before the HTTP response starts (an overloaded server)
-    first_token_delay_s: float = 0.0  # after the role chunk, before the first token (prefill)
-    stall_after_chunks: int | None = None  # stall after this many token chunks ...
-    stall_s: float = 0.0  # ... for this long (mid-stream stall)
-    chunk_interval_s: float = 0.0  # between token chunks
-    cut_after_chunks: int | None = None  # the server closes the stream after this many token chunks ...
-    cut_hard: bool = False  # ... without the final chunk and [DONE]; hard: the connection is reset mid-body
-
-
-@dataclass(frozen=True, slots=True)
-class TextReply:
-    text: str
-    chunk_chars: int = 4
-    pacing: Pacing = Pacing()
-    finish_reason: str = "stop"
-
-
-@dataclass(frozen=True, slots=True)
-class ScriptedCall:
-    name: str
-    arguments: str | Mapping[str, Any] = field(default_factory=dict)  # a str is sent verbatim
-    id: str | None = None
-
-    @property
-    def arguments_json(self) -> str:
-        return self.arguments if isinstance(self.arguments, str) else json.dumps(dict(self.arguments))
-
-
-@dataclass(frozen=True, slots=True)
-class ToolCallReply:
-    calls: tuple[ScriptedCall, ...]
-    text: str = ""  # content streamed before the calls
-    arg_chunk_chars: int = 5
-    pacing: Pacing = Pacing()
-
-
-@dataclass(frozen=True, slots=True)
-class ErrorReply:
-    status: int
-    message: str
-    error_type: str = "BadRequestError"
-
-
-@dataclass(frozen=True, slots=True)
-class CallbackReply:
-    """Decides the reply from the request (sync or async function)."""
-
-    fn: Callable[[RecordedRequest], ScriptedReply | Awaitable[ScriptedReply]]
-
-
-ScriptedReply = TextReply | ToolCallReply | ErrorReply | CallbackReply
-ConcreteReply = TextReply | ToolCallReply | ErrorReply
-
-
-@dataclass(frozen=True, slots=True)
-class RecordedRequest:
-    path: str
-    headers: Mapping[str, str]
-    body: Mapping[str, Any]
-
-    @property
-    def messages(self) -> list[dict[str, Any]]:
-        return list(self.body.get("messages") or [])
-
-    @property
-    def tool_names(self) -> list[str]:
-        return [t["function"]["name"] for t in self.body.get("tools") or []]
-
-    @property
-    def last_user_text(self) -> str:
-        for message in reversed(self.messages):
-            if message.get("role") == "user":
-                content = message.get("content")
-                if isinstance(content, str):
-                    return content
-                return "".join(p.get("text", "") for p in content or [] if p.get("type") == "text")
-        return ""
-
-    def audio_inputs(self) -> list[tuple[str, bytes]]:
-        """Every ``input_audio`` part as (format, decoded bytes)."""
-        found: list[tuple[str, bytes]] = []
-        for message in self.messages:
-            content = message.get("content")
-            for part in content if isinstance(content, list) else []:
-                if part.get("type") == "input_audio":
-                    audio = part["input_audio"]
-                    found.append((str(audio.get("format")), base64.b64decode(audio["data"], validate=True)))
-        return found
-
-
-def reply_from_dict(data: Mapping[str, Any]) -> ConcreteReply:
-    """A reply from JSON, for scripts in files: ``{"text": ...}``, ``{"tool_calls": [{"name", "arguments"}]}``
-    or ``{"error": status, "message": ...}``; optional ``"pacing": {...}``."""
-    pacing = Pacing(**data.get("pacing", {}))
-    if "error" in data:
-        return ErrorReply(int(data["error"]), str(data.get("message", "error")))
-    if "tool_calls" in data:
-        calls = tuple(ScriptedCall(c["name"], c.get("arguments", {}), c.get("id")) for c in data["tool_calls"])
-        return ToolCallReply(calls, text=str(data.get("text", "")), pacing=pacing)
-    if "text" in data:
-        return TextReply(str(data["text"]), pacing=pacing)
-    raise LLMError(f"unknown scripted reply {dict(data)!r}: use text, tool_calls or error")
-
-
 # --- the server ---------------------------------------------------------------------
-
-
-def _chunks(text: str, size: int) -> list[str]:
-    size = max(1, size)
-    return [text[i : i + size] for i in range(0, len(text), size)]
 
 
 class FakeOpenAIServer:
@@ -176,8 +72,11 @@ class FakeOpenAIServer:
         api_key: str | None = None,
         host: str = "127.0.0.1",
         port: int = 0,
+        quirks: Quirks | None = None,
     ) -> None:
         self._script: list[ScriptedReply] = list(script)
+        self.quirks = quirks or Quirks()  # may be changed between requests
+        self.busy_sent = 0  # requests answered with quirks.busy_status
         self.default = default
         self.model = model
         self.api_key = api_key
@@ -250,6 +149,16 @@ class FakeOpenAIServer:
             with contextlib.suppress(TimeoutError):
                 await asyncio.wait_for(self._closing.wait(), seconds)
 
+    async def _pause_pinging(self, seconds: float) -> AsyncIterator[bytes]:
+        """Wait `seconds`, sending an SSE keep-alive every 0.1 s if the quirk asks for them."""
+        if not self.quirks.keep_alives:
+            await self._pause(seconds)
+            return
+        end = time.monotonic() + seconds
+        while (left := end - time.monotonic()) > 0 and not self._closing.is_set():
+            await self._pause(min(0.1, left))
+            yield fake_wire.keep_alive()
+
     # -- handlers --
 
     async def _health(self, request: Request) -> Response:
@@ -285,95 +194,23 @@ class FakeOpenAIServer:
             return _error(401, "Incorrect API key provided", "AuthenticationError")
         if not isinstance(body, dict) or not isinstance(body.get("messages"), list) or "model" not in body:
             return _error(400, "request needs 'model' and a list of 'messages'")
+        quirks = self.quirks
+        if quirks.busy_status is not None and self.busy_sent < quirks.busy_requests:
+            self.busy_sent += 1  # a busy server does not take the request: the script is not used
+            headers = {"Retry-After": quirks.busy_retry_after} if quirks.busy_retry_after is not None else {}
+            return _error(quirks.busy_status, "server busy, try again later", "ServiceUnavailableError", headers)
         reply = await self._next_reply(recorded)
         if isinstance(reply, ErrorReply):
             return _error(reply.status, reply.message, reply.error_type)
         await self._pause(reply.pacing.headers_delay_s)
         include_usage = bool((body.get("stream_options") or {}).get("include_usage"))
         if not body.get("stream"):
-            return JSONResponse(self._completion(reply))
-        return StreamingResponse(self._sse(reply, include_usage), media_type="text/event-stream")
-
-    def _completion(self, reply: TextReply | ToolCallReply) -> dict[str, Any]:
-        message: dict[str, Any] = {"role": "assistant", "content": reply.text or None}
-        finish = "stop"
-        if isinstance(reply, ToolCallReply):
-            finish = "tool_calls"
-            message["tool_calls"] = [
-                {
-                    "id": c.id or f"chatcmpl-tool-{uuid.uuid4().hex[:16]}",
-                    "type": "function",
-                    "function": {"name": c.name, "arguments": c.arguments_json},
-                }
-                for c in reply.calls
-            ]
-        else:
-            finish = reply.finish_reason
-        return {
-            "id": f"chatcmpl-{uuid.uuid4().hex}",
-            "object": "chat.completion",
-            "created": int(time.time()),
-            "model": self.model,
-            "choices": [{"index": 0, "message": message, "logprobs": None, "finish_reason": finish}],
-            "usage": {"prompt_tokens": 10, "completion_tokens": 5, "total_tokens": 15},
-        }
-
-    async def _sse(self, reply: TextReply | ToolCallReply, include_usage: bool) -> AsyncIterator[bytes]:
-        completion_id = f"chatcmpl-{uuid.uuid4().hex}"
-        created = int(time.time())
-
-        def event(choices: list[dict[str, Any]], **extra: Any) -> bytes:
-            data = {
-                "id": completion_id,
-                "object": "chat.completion.chunk",
-                "created": created,
-                "model": self.model,
-                "choices": choices,
-                **extra,
-            }
-            return f"data: {json.dumps(data)}\n\n".encode()
-
-        def chunk(delta: dict[str, Any], finish: str | None = None) -> bytes:
-            choice: dict[str, Any] = {"index": 0, "delta": delta, "logprobs": None, "finish_reason": finish}
-            if finish is not None:
-                choice["stop_reason"] = None
-            return event([choice])
-
-        deltas, finish = _deltas(reply)
-        pacing = reply.pacing
-        yield chunk({"role": "assistant", "content": ""})
-        await self._pause(pacing.first_token_delay_s)
-        for sent, delta in enumerate(deltas):
-            if pacing.cut_after_chunks is not None and sent == pacing.cut_after_chunks:
-                if pacing.cut_hard:
-                    raise StreamCut(f"fake server: stream reset after {sent} chunks (scripted)")
-                return
-            if pacing.stall_after_chunks is not None and sent == pacing.stall_after_chunks:
-                await self._pause(pacing.stall_s)
-            elif sent:
-                await self._pause(pacing.chunk_interval_s)
-            yield chunk(delta)
-        yield chunk({"content": ""}, finish)
-        if include_usage:
-            n = max(1, len(deltas))
-            yield event([], usage={"prompt_tokens": 10, "total_tokens": 10 + n, "completion_tokens": n})
-        yield b"data: [DONE]\n\n"
+            return JSONResponse(fake_wire.completion(self.model, reply, quirks))
+        stream = fake_wire.sse(self.model, reply, quirks, include_usage, self._pause_pinging)
+        return StreamingResponse(stream, media_type="text/event-stream")
 
 
-def _deltas(reply: TextReply | ToolCallReply) -> tuple[list[dict[str, Any]], str]:
-    """The ``delta`` objects of a streamed reply (after the role chunk) and its finish reason."""
-    if isinstance(reply, TextReply):
-        return [{"content": piece} for piece in _chunks(reply.text, reply.chunk_chars)], reply.finish_reason
-    deltas: list[dict[str, Any]] = [{"content": piece} for piece in _chunks(reply.text, 4)]
-    for index, call in enumerate(reply.calls):
-        call_id = call.id or f"chatcmpl-tool-{uuid.uuid4().hex[:16]}"
-        head = {"id": call_id, "type": "function", "index": index, "function": {"name": call.name}}
-        deltas.append({"tool_calls": [head]})
-        for piece in _chunks(call.arguments_json, reply.arg_chunk_chars):
-            deltas.append({"tool_calls": [{"index": index, "function": {"arguments": piece}}]})
-    return deltas, "tool_calls"
-
-
-def _error(status: int, message: str, error_type: str = "BadRequestError") -> Response:
+def _error(status: int, message: str, error_type: str = "BadRequestError",
+           headers: dict[str, str] | None = None) -> Response:
     body = {"error": {"message": message, "type": error_type, "param": None, "code": status}}
-    return JSONResponse(body, status_code=status)
+    return JSONResponse(body, status_code=status, headers=headers)

@@ -6,6 +6,11 @@ answer is ``data: {...}`` lines (``choices[0].delta.content`` and
 ``delta.tool_calls[i]`` whose ``function.arguments`` arrive in pieces), ended
 by ``data: [DONE]``. Every wait is bounded by `Deadlines`; httpx's own read
 timeout is off so that our deadlines (not the library's) decide.
+
+Real servers' quirks are tolerated (docs/llm.md, "Server quirks"): a stream that ends with
+``[DONE]`` but no ``finish_reason`` (llama-cpp-python), arguments sent as a JSON object, no
+``usage``, unknown fields, SSE comments and keep-alives, tool calls written as text in
+``content`` (`text_calls`), and 429/503 with ``Retry-After`` (`retry_after`).
 """
 
 from __future__ import annotations
@@ -35,6 +40,8 @@ from robovoice.llm.base import (
     has_audio,
     tool_call_from_raw,
 )
+from robovoice.llm.retry_after import RETRYABLE_STATUS, RetryAfterError, retry_after_seconds
+from robovoice.llm.text_calls import TextCall, TextCallParser
 
 log = logging.getLogger(__name__)
 _T = TypeVar("_T")
@@ -65,16 +72,25 @@ class _TurnState:
     usage: Usage | None = None
     progress: int = 0  # chunks that carried model output (content, reasoning, calls, finish)
 
-    def final_events(self, url: str) -> Iterator[LLMEvent]:
-        """The assembled tool calls (in index order), then `Finished`."""
-        if self.finish_reason is None:
-            raise LLMError(f"stream from {url} ended without a finish reason")
+    def final_events(self, url: str, text_calls: Sequence[TextCall] = (), *, done: bool = True) -> Iterator[LLMEvent]:
+        """The assembled tool calls (in index order), those written as text, then `Finished`.
+        `done`: the stream ended with ``[DONE]`` (so a missing finish reason is a quirk, not a cut)."""
+        reason = self.finish_reason
+        if reason is None:
+            if not done:  # no finish reason and no [DONE]: the answer may have been cut short
+                raise LLMError(f"stream from {url} ended without a finish reason or [DONE] (cut short?)")
+            reason = "tool_calls" if self.calls or text_calls else "stop"
+            log.debug("stream from %s ended with [DONE] but no finish reason; taken as %r", url, reason)
         for index in sorted(self.calls):
             call = self.calls[index]
             if not call.name:
                 raise LLMError(f"tool call #{index} from {url} has no function name")
             yield tool_call_from_raw(call.id or f"call_{index}", call.name, "".join(call.arguments))
-        yield Finished(self.finish_reason, self.usage)
+        for index, text_call in enumerate(text_calls, start=len(self.calls)):
+            yield tool_call_from_raw(f"call_{index}", text_call.name, text_call.arguments)
+        if text_calls and reason == "stop":  # the server did not know its text was a call
+            reason = "tool_calls"
+        yield Finished(reason, self.usage)
 
 
 def error_message_from_body(body: bytes) -> str:
@@ -135,13 +151,19 @@ def apply_chunk(chunk: Mapping[str, Any], state: _TurnState) -> str:
         if name and name != call.name:
             # Sent once by vLLM/OpenAI; a server that streams the name in pieces is appended.
             call.name = str(name) if not call.name else call.name + str(name)
-        if function.get("arguments"):
-            call.arguments.append(str(function["arguments"]))
+        call.arguments.append(_arguments_text(function.get("arguments")))
     content = delta.get("content")
     return content if isinstance(content, str) else ""
 
 
-def events_from_completion(body: bytes, url: str) -> Iterator[LLMEvent]:
+def _arguments_text(raw: Any) -> str:
+    """Arguments as JSON text: some servers send the object itself instead of a JSON string."""
+    if raw is None:
+        return ""
+    return json.dumps(raw) if isinstance(raw, dict | list) else str(raw)
+
+
+def events_from_completion(body: bytes, url: str, tool_names: Sequence[str] = ()) -> Iterator[LLMEvent]:
     """Events from a non-streamed ``chat.completion`` (a server that ignored ``stream``)."""
     try:
         data = json.loads(body)
@@ -153,12 +175,15 @@ def events_from_completion(body: bytes, url: str) -> Iterator[LLMEvent]:
     for index, raw in enumerate(message.get("tool_calls") or []):
         function = raw.get("function") or {}
         state.calls[index] = _PartialCall(
-            str(raw.get("id") or ""), str(function.get("name") or ""), [str(function.get("arguments") or "")]
+            str(raw.get("id") or ""), str(function.get("name") or ""), [_arguments_text(function.get("arguments"))]
         )
     content = message.get("content")
-    if isinstance(content, str) and content:
-        yield TextDelta(content)
-    yield from state.final_events(url)
+    parser = TextCallParser(tool_names)
+    text = parser.feed(content) if isinstance(content, str) else ""
+    rest, text_calls = parser.finish()
+    if text + rest:
+        yield TextDelta(text + rest)
+    yield from state.final_events(url, text_calls)
 
 
 def parse_sse_line(line: str) -> Mapping[str, Any] | None:
@@ -242,21 +267,39 @@ class OpenAICompatBackend:
         start = time.monotonic()
         total_at = start + d.total_s
         first = _Phase("first_token", d.first_token_s, min(start + d.first_token_s, total_at))
-        request = self._client.build_request("POST", self.url, json=self.request_body(messages, tools))
-        response = await self._send(request, first, total_at)
+        names = [t.name for t in tools]
+        response = await self._open(self.request_body(messages, tools), first, total_at)
         try:
-            if response.status_code >= 400:
-                body = await self._bounded(response.aread(), first, total_at)
-                raise LLMHTTPError(response.status_code, error_message_from_body(body), self.url)
             if response.headers.get("content-type", "").startswith("application/json"):
                 body = await self._bounded(response.aread(), first, total_at)
-                for event in events_from_completion(body, self.url):
+                for event in events_from_completion(body, self.url, names):
                     yield event
                 return
-            async for event in self._events(response, start, first, total_at):
+            async for event in self._events(response, start, first, total_at, names):
                 yield event
         finally:
             await response.aclose()
+
+    async def _open(self, body: dict[str, Any], first: _Phase, total_at: float) -> httpx.Response:
+        """Send the request; a 2xx response, open. A 429/503 whose ``Retry-After`` fits in what is
+        left of the first-token deadline is retried once; any other error status is raised."""
+        for attempt in (1, 2):
+            response = await self._send(self._client.build_request("POST", self.url, json=body), first, total_at)
+            if response.status_code < 400:
+                return response
+            try:
+                message = error_message_from_body(await self._bounded(response.aread(), first, total_at))
+            finally:
+                await response.aclose()
+            status = response.status_code
+            wait = retry_after_seconds(response.headers.get("retry-after")) if status in RETRYABLE_STATUS else None
+            if wait is None:
+                raise LLMHTTPError(status, message, self.url)
+            if attempt == 2 or wait >= min(first.at, total_at) - time.monotonic():
+                raise RetryAfterError(status, message, self.url, wait)
+            log.info("%s: HTTP %d, retrying once after %g s (Retry-After)", self.name, status, wait)
+            await asyncio.sleep(wait)
+        raise AssertionError("unreachable: the second attempt returns or raises")
 
     async def _send(self, request: httpx.Request, first: _Phase, total_at: float) -> httpx.Response:
         try:
@@ -279,10 +322,12 @@ class OpenAICompatBackend:
             raise DeadlineExceededError(phase.name, phase.seconds, self.url) from exc
 
     async def _events(
-        self, response: httpx.Response, start: float, first: _Phase, total_at: float
+        self, response: httpx.Response, start: float, first: _Phase, total_at: float, tool_names: Sequence[str]
     ) -> AsyncIterator[LLMEvent]:
         idle_s = self.deadlines.idle_s
         state = _TurnState()
+        parser = TextCallParser(tool_names)  # holds back content that may be a call written as text
+        done = False
         lines = cast(AsyncGenerator[str, None], response.aiter_lines())  # an async generator
         phase = first
         try:
@@ -297,6 +342,7 @@ class OpenAICompatBackend:
                 if chunk is None:
                     continue
                 if "[DONE]" in chunk:
+                    done = True
                     break
                 progress = state.progress
                 text = apply_chunk(chunk, state)
@@ -304,11 +350,15 @@ class OpenAICompatBackend:
                     if phase is first:
                         log.debug("%s: first token after %.3f s", self.name, time.monotonic() - start)
                     phase = _Phase("idle", idle_s, time.monotonic() + idle_s)
-                if text:
-                    yield TextDelta(text)
+                released = parser.feed(text) if text else ""
+                if released:
+                    yield TextDelta(released)
         finally:
             await lines.aclose()
-        for event in state.final_events(self.url):
+        rest, text_calls = parser.finish()
+        if rest:
+            yield TextDelta(rest)
+        for event in state.final_events(self.url, text_calls, done=done):
             yield event
 
     async def aclose(self) -> None:
