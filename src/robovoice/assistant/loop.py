@@ -113,19 +113,12 @@ class Assistant:
         the conversation's observer): a voice turn routes its sentences to speech with it."""
         metrics = metrics or TurnMetrics()
         emit = self._emitter(observer)
-        user_message = ChatMessage("user", user)
-        await emit(TurnStarted(user_message.text))
-        messages = [ChatMessage("system", self.system_prompt), *self._history, user_message]
-        # audio to an audio model has no words to read; an answer to the robot's own question
-        # ("Which room?" - "The bedroom.") asks for what the question offered
-        answering = bool(self._history) and self._history[-1].text.rstrip().endswith("?")
-        intent = read_request(user, answering=answering) if isinstance(user, str) else None
+        await emit(TurnStarted(ChatMessage("user", user).text))
+        messages, intent = self._opening(user)
         asked = intent.steps if intent is not None else ()
         # what a "there" or a "her" can refer to: what the person and the robot said before
         said = {w for m in self._history if m.role in ("user", "assistant") for w in words(m.text)}
         max_steps = max(self.max_steps, len(asked) + 2)
-        if len(asked) > 1:  # a compound request: one thing at a time, in the order asked
-            messages.append(ChatMessage("user", f"One thing at a time, in order. First: {asked[0]}."))
         replies: list[str] = []
         calls: list[ToolCalled] = []
         outcomes: list[ToolReturned] = []
@@ -167,6 +160,23 @@ class Assistant:
         metrics.mark("finished")
         await emit(TurnFinished(reply, tuple(calls), steps))
         return TurnResult(reply, tuple(calls), tuple(outcomes), metrics, fell_back)
+
+    async def first_request(self, text: str) -> tuple[list[ChatMessage], list[ToolSpec]]:
+        """The messages and tools the first model step of a turn for `text` would send (the
+        same code path as `turn`), without touching the history: for a speculative prefill."""
+        messages, _ = self._opening(text)
+        return messages, list(await self.tools.specs())
+
+    def _opening(self, user: str | tuple[ContentPart, ...]) -> tuple[list[ChatMessage], Intent | None]:
+        """The first step's messages for `user`, and the reading of the request (None for audio)."""
+        messages = [ChatMessage("system", self.system_prompt), *self._history, ChatMessage("user", user)]
+        # audio to an audio model has no words to read; an answer to the robot's own question
+        # ("Which room?" - "The bedroom.") asks for what the question offered
+        answering = bool(self._history) and self._history[-1].text.rstrip().endswith("?")
+        intent = read_request(user, answering=answering) if isinstance(user, str) else None
+        if intent is not None and len(intent.steps) > 1:  # a compound request: one thing at a time, in order
+            messages.append(ChatMessage("user", f"One thing at a time, in order. First: {intent.steps[0]}."))
+        return messages, intent
 
     async def _model_step(
         self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit
