@@ -1,9 +1,15 @@
 """Per-turn latency: timestamps of each stage, relative to the turn's start.
 
-The turn starts at end of speech (voice) or when the text arrives (chat). Stages:
-`transcript`, `first_token`, `tool_call:<name>` / `tool_result:<name>`, `first_sentence`,
-`first_audio`, `finished`. `model_ms` adds up the time spent waiting for the model, so the
-rest of a turn can be reported as our own overhead.
+The turn starts when the end of turn is decided (voice: the chunk in which the end-of-turn
+silence was complete) or when the text arrives (chat). Stages: `endpoint`, `transcript`,
+`first_token`, `tool_call:<name>` / `tool_result:<name>`, `first_sentence`, `first_audio`,
+`finished`. `model_ms` adds up the time spent waiting for the model, so the rest of a turn
+can be reported as our own overhead.
+
+A voice turn also knows `speech_end`, the clock time of the user's last word (the VAD's last
+voiced frame, mapped from stream time to the clock: `voice.clock.StreamAnchor`), which comes
+before the decision by the end-of-turn silence. `from_speech_end()` gives every stage from that
+origin, the one a person feels (issue 12); `as_dict()` keeps the decision as its origin.
 """
 
 from __future__ import annotations
@@ -23,6 +29,7 @@ class TurnMetrics:
     tools_ms: float = 0.0
     stt_ms: float = 0.0
     tts_ms: float = 0.0
+    speech_end: float | None = None  # clock time of the user's last word (voice turns), see the docstring
 
     def __post_init__(self) -> None:
         if not self.start:
@@ -41,6 +48,14 @@ class TurnMetrics:
         if self.tts_ms:
             out["tts_ms"] = round(self.tts_ms, 1)
         return out
+
+    def from_speech_end(self) -> dict[str, float]:
+        """The stage marks in ms from the user's last word ({} when it is not known). Here
+        `endpoint` is how long after the last word the end of turn was decided."""
+        if self.speech_end is None:
+            return {}
+        shift = (self.start - self.speech_end) * 1000.0
+        return {stage: round(ms + shift, 1) for stage, ms in self.marks.items()}
 
 
 def percentile(values: Sequence[float], q: int) -> float:

@@ -77,6 +77,7 @@ class Commands:
         self.after_turn = after_turn
         self.hint = ""
         self.roles = VoiceRoles()
+        self.wall_time: Callable[[float], float | None] = lambda _stream_s: None  # the pipeline's StreamAnchor
 
     def start(
         self, utt: HeardUtterance, verdict: Verdict, received: float, compute_s: float,
@@ -85,6 +86,7 @@ class Commands:
         """A command turn for `utt`, taking the floor (whoever held it is cancelled)."""
         metrics = TurnMetrics(start=received)
         metrics.mark("endpoint", received + compute_s)
+        metrics.speech_end = self.wall_time(utt.end)  # utt.end: the last voiced frame, in stream time
         turn = CommandTurn(self, self.floor.new_turn(), metrics)
         self.floor.take(turn.id, turn.run(utt, verdict, speculation))
 
