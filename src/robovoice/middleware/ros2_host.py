@@ -21,13 +21,14 @@ import logging
 import math
 import re
 import time
-from collections.abc import Awaitable, Mapping
+from collections.abc import Awaitable, Callable, Mapping
 from typing import Any
 
 from robovoice.errors import MiddlewareError, RobotFailure
 from robovoice.middleware.base import JSON, ActionHandler, Feedback, NodeInfo, RpcHandler, RpcInfo
 from robovoice.middleware.ros2_bridge import RosBridge
 from robovoice.middleware.ros2_standard import MIRRORS, mirrored
+from robovoice.middleware.ros2_standard_servers import serve_standard
 
 import rclpy  # isort: skip
 from rclpy.action.server import ActionServer, CancelResponse, GoalResponse, ServerGoalHandle
@@ -130,6 +131,8 @@ class Ros2NodeHost:
                          result_service_qos_profile=SERVICES, cancel_service_qos_profile=SERVICES)
             for name, handler in actions.items()
         ]
+        # NavigateToPose and SetBool for plain ROS 2 clients, beside the JSON ones
+        self._standard = serve_standard(self, node, group, SERVICES, info.name, rpcs, actions)
         self._running: set[concurrent.futures.Future[JSON]] = set()
         self._publishers: dict[str, Any] = {}
         self._mirrors: dict[str, Any] = {}
@@ -168,30 +171,39 @@ class Ros2NodeHost:
         self._bridge.host_executor().remove_node(node)
         for server in self._servers:
             server.destroy()
+        for standard in self._standard:
+            standard.destroy()
         await asyncio.to_thread(node.destroy_node)
 
-    def _failure(self, exc: BaseException) -> str:
+    def failure(self, exc: BaseException) -> str:
+        """A handler's failure as the JSON error a caller gets."""
         if self._node is None:  # cancelled by leave()
             return json.dumps({"error": "node_unavailable", "message": f"node {self._info.name!r} left",
                                "hint": "the robot part went offline; tell the user", "details": {}})
         return _failure_json(exc)
 
-    def _start(self, work: Awaitable[JSON]) -> concurrent.futures.Future[JSON]:
+    def wait_for(self, work: Awaitable[JSON], cancelled: Callable[[], bool] | None = None) -> JSON:
+        """Run a handler's coroutine on the event loop and wait for it (on an executor thread);
+        `cancelled`, polled every 20 ms, cancels it. Raises what the handler raised."""
         done = asyncio.run_coroutine_threadsafe(_coroutine(work), self._loop)
         self._running.add(done)
-        return done
+        try:
+            while cancelled is not None and not done.done():
+                if cancelled():
+                    done.cancel()
+                    break
+                time.sleep(0.02)
+            return done.result(HOST_CALL_S)
+        finally:
+            self._running.discard(done)
 
     def _service(self, handler: RpcHandler) -> Any:
         def serve(request: Any, response: Any) -> Any:  # on a host executor thread
             try:
                 args = json.loads(request.arguments or "{}")
-                done = self._start(handler(args))
-                try:
-                    response.result = json.dumps(done.result(HOST_CALL_S), default=str)
-                finally:
-                    self._running.discard(done)
+                response.result = json.dumps(self.wait_for(handler(args)), default=str)
             except BaseException as exc:  # every failure goes back to the caller as a JSON error
-                response.error = self._failure(exc)
+                response.error = self.failure(exc)
             return response
         return serve
 
@@ -205,18 +217,12 @@ class Ros2NodeHost:
                     progress=float(item.progress), total=math.nan if item.total is None else float(item.total),
                     message=item.message, data=json.dumps(dict(item.data), default=str)))
 
-            done = self._start(handler(args, feedback))
-            while not done.done():
-                if goal.is_cancel_requested:
-                    done.cancel()
-                    break
-                time.sleep(0.02)
-            self._running.discard(done)
             try:
-                result.result = json.dumps(done.result(HOST_CALL_S), default=str)
+                result.result = json.dumps(self.wait_for(handler(args, feedback), lambda: goal.is_cancel_requested),
+                                           default=str)
                 goal.succeed()
             except BaseException as exc:  # cancelled, a robot failure, a bug: the caller gets JSON
-                result.error = self._failure(exc)
+                result.error = self.failure(exc)
                 if goal.is_cancel_requested:
                     goal.canceled()
                 else:

@@ -222,7 +222,7 @@ class NavigationNode:
             total=round(drive.total_m, 3),
             message=message,
             data={"target": drive.place.name, "remaining_m": round(drive.remaining_m, 2),
-                  "x": round(pose.x, 2), "y": round(pose.y, 2)},
+                  "x": round(pose.x, 2), "y": round(pose.y, 2), "heading_deg": round(pose.heading_deg, 1)},
         )
 
     def _halted(self, drive: _Drive, reason: str) -> CancelledByRobotError:
