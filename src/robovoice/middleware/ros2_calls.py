@@ -131,7 +131,7 @@ class Ros2Calls:
 
         send = client.send_goal_async(run_type.Goal(arguments=json.dumps(dict(args), default=str)),
                                       feedback_callback=arrived)
-        handle = await self._await(self._bridge.wait(send), self._presence.action_up, node, target, deadline, "goal")
+        handle = await self._goal(send, node, target, deadline)
         relay = asyncio.get_running_loop().create_task(_relay_plain(feedback, on_feedback))
         result_waiter = self._bridge.wait(handle.get_result_async())
         try:
@@ -189,8 +189,7 @@ class Ros2Calls:
             self._bridge.post(_offer, feedback, data)
 
         send = client.send_goal_async(goal, feedback_callback=arrived)
-        handle = await self._await(self._bridge.wait(send), self._presence.action_up, node, binding, deadline,
-                                   "goal")
+        handle = await self._goal(send, node, binding, deadline)
         if not handle.accepted:
             raise RobotFailure(f"{binding.ros_name} rejected the goal", code="goal_rejected",
                                hint="the robot refused this request; tell the user",
@@ -214,6 +213,26 @@ class Ros2Calls:
         while not feedback.empty():  # what arrived before the result, in order
             await _tell(binding, on_feedback, counter, feedback.get_nowait())
         return _result(binding, outcome.status, to_json(outcome.result), node)
+
+    async def _goal(self, send: Any, node: str, target: ToolBinding | _Plain, deadline: float) -> Any:
+        """The goal's handle, once the server has answered. A caller that gives up before that
+        (cancelled, timed out) still cancels the goal if the server accepts it meanwhile: the
+        server may already be running it."""
+        waiter = self._bridge.wait(send)
+        try:
+            return await self._await(waiter, self._presence.action_up, node, target, deadline, "goal")
+        except NodeUnavailableError:  # the server is gone: nobody to cancel the goal with
+            raise
+        except BaseException:
+            try:
+                async with asyncio.timeout(CANCEL_WAIT_S):
+                    handle = await waiter
+            except (Exception, asyncio.CancelledError) as exc:  # no answer in time, the server failed it...
+                log.info("the goal given up on was not cancelled: %r", exc)
+            else:
+                if handle.accepted:
+                    await self._cancel(handle)
+            raise
 
     async def _cancel(self, handle: Any) -> None:
         """Ask the server to cancel the goal; bounded, since the server may be gone."""
