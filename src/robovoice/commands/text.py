@@ -1,6 +1,12 @@
-"""Text for the terminal: one shared helper for the commands' live output."""
+"""Text for the terminal: shared helpers for the commands' live output."""
 
 from __future__ import annotations
+
+import logging
+
+from robovoice.assistant.speech_guard import tool_syntax_in
+
+log = logging.getLogger(__name__)
 
 
 def one_line(text: str, limit: int = 110) -> str:
@@ -8,3 +14,12 @@ def one_line(text: str, limit: int = 110) -> str:
     characters with a trailing "…" when longer."""
     text = " ".join(text.split())
     return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def shown_reply(sentence: str) -> str | None:
+    """An assistant sentence as the terminal shows it, or None (logged) when it carries tool-call
+    syntax: raw ``functions.x:`` or ``<tool_call>`` text is never printed as the robot's words."""
+    if (syntax := tool_syntax_in(sentence)) is not None:
+        log.warning("not showing a sentence with tool-call syntax %r: %r", syntax, sentence[:200])
+        return None
+    return sentence

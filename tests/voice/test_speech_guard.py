@@ -1,0 +1,153 @@
+"""No tool-call syntax is ever spoken or printed: the guard itself, the terminal's filter, and
+the real voice pipeline (model fakes, the sim robot over MCP) with backends that leak it."""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import AsyncGenerator, Sequence
+from dataclasses import replace
+
+import pytest
+
+from robovoice.assistant.speech_guard import speakable, tool_syntax_in
+from robovoice.audio.fakes import ToneSynthesizer
+from robovoice.commands.text import shown_reply
+from robovoice.llm.base import ChatMessage, Finished, LLMEvent, TextDelta, ToolSpec
+from robovoice.llm.fake_server import (
+    FakeOpenAIServer,
+    Quirks,
+    ScriptedCall,
+    ScriptedReply,
+    TextReply,
+    ToolCallReply,
+)
+from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.voice.events import SentenceSpoken, VoiceTurnFinished
+from robovoice.voice.models import VoiceModels
+
+from .voice_kit import SettableTranscriber, voice_session, wake_command
+
+pytestmark = pytest.mark.timeout(90)
+
+LEAKS = [
+    "functions.get_battery_state:",
+    'functions.navigate_to:\n{"target": "kitchen"}',
+    "Sure! functions.navigate_to",
+    '<tool_call>\n{"name": "navigate_to", "arguments": {"target": "kitchen"}}\n</tool_call>',
+    "</tool_call>",
+    '{"name": "navigate_to", "arguments": {"target": "kitchen"}}',
+    '{"arguments": {"target": "kitchen"}, "name": "navigate_to"}',
+    '[TOOL_CALLS][{"name": "navigate_to", "arguments": {}}]',
+    "<|im_start|>assistant",
+    "All done.<|im_end|>",
+    "<|python_tag|>navigate_to(target='kitchen')",
+    "<function=navigate_to>{\"target\": \"kitchen\"}</function>",
+    "<tool_response>ok</tool_response>",
+]
+
+SPEAKABLE = [
+    "I have several functions.",
+    "My functions. Well, I can drive and talk.",
+    "The kitchen is to the left.",
+    "Three is < four, and {braces} are fine.",
+    "My name is Robo, and my arguments are good ones.",
+    "I use a function call to drive.",
+]
+
+
+@pytest.mark.parametrize("sentence", LEAKS)
+def test_tool_call_syntax_is_never_speakable(sentence: str) -> None:
+    assert speakable(sentence) is None
+    assert tool_syntax_in(sentence)
+    assert shown_reply(sentence) is None
+
+
+@pytest.mark.parametrize("sentence", SPEAKABLE)
+def test_ordinary_sentences_pass_unchanged(sentence: str) -> None:
+    assert speakable(sentence) == sentence and tool_syntax_in(sentence) is None
+    assert shown_reply(sentence) == sentence
+
+
+def test_the_terminal_filter_logs_what_it_drops(caplog: pytest.LogCaptureFixture) -> None:
+    with caplog.at_level(logging.WARNING, logger="robovoice.commands.text"):
+        assert shown_reply("functions.get_battery_state:") is None
+    assert "tool-call syntax 'functions.get_battery_state'" in caplog.text
+
+
+class LeakyBackend:
+    """A model that writes its tool-call syntax as words, in forms no backend turns into a call
+    (what reached the user in issue 16), then one real sentence. (A sentence that carries a
+    control token is dropped whole: "All done.<|im_end|>" in LEAKS.)"""
+
+    name = "leaky"
+    accepts_audio = False
+
+    def __init__(self) -> None:
+        self.turns = 0
+
+    async def stream(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
+                     ) -> AsyncGenerator[LLMEvent, None]:
+        self.turns += 1
+        for piece in ("<|im_start|>assistant\n", "functions.get_battery_state:\n", "<tool_call>\n",
+                      '{"name": "get_battery_state", ', '"arguments": {}}\n', "</tool_call>\n",
+                      "I am fine, thank you."):
+            yield TextDelta(piece)
+        yield Finished("stop")
+
+    async def aclose(self) -> None:
+        pass
+
+
+def recording_models(fakes: VoiceModels) -> tuple[VoiceModels, ToneSynthesizer]:
+    tts = ToneSynthesizer(seconds_per_char=0.02)
+    return replace(fakes, tts=tts), tts
+
+
+def assert_clean(texts: Sequence[str]) -> None:
+    leaked = [t for t in texts if tool_syntax_in(t) or "functions." in t or "tool_call" in t]
+    assert not leaked, leaked
+
+
+async def test_the_voice_pipeline_never_speaks_leaked_syntax(
+    fakes: VoiceModels, transcriber: SettableTranscriber, caplog: pytest.LogCaptureFixture
+) -> None:
+    models, tts = recording_models(fakes)
+    backend = LeakyBackend()
+    transcriber.text = "Hey Jarvis, how are you?"
+    with caplog.at_level(logging.WARNING, logger="robovoice.voice.speech"):
+        async with voice_session(models, backend, speed=2.0) as s:
+            await s.say(wake_command())
+            await s.log.wait_for(VoiceTurnFinished)
+            await s.settle()
+    assert backend.turns == 1
+    spoken = [e.text for e in s.log.of(SentenceSpoken)]
+    assert "I am fine, thank you." in spoken and "I am fine, thank you." in tts.texts
+    assert_clean(spoken)
+    assert_clean(tts.texts)  # nothing with the syntax was even synthesised
+    assert "not speaking a sentence with tool-call syntax" in caplog.text
+
+
+async def test_the_voice_pipeline_acts_on_calls_a_server_wrote_as_text(
+    fakes: VoiceModels, transcriber: SettableTranscriber
+) -> None:
+    """Through the real HTTP wire: a Qwen/Hermes-style server with no finish reason."""
+    models, tts = recording_models(fakes)
+    switch_on = ScriptedCall("set_projector_power", {"on": True})
+    script: list[ScriptedReply] = [ToolCallReply((switch_on,), text="Switching it on."),
+                                   TextReply("The projector is on now.")]
+    async with FakeOpenAIServer(script, quirks=Quirks(tool_calls_as="hermes", no_finish_reason=True)) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        transcriber.text = "Hey Jarvis, turn on the projector."
+        try:
+            async with voice_session(models, backend, speed=2.0) as s:
+                await s.say(wake_command())
+                done = await s.log.wait_for(VoiceTurnFinished)
+                await s.settle()
+                assert s.sim.state.projector_on
+        finally:
+            await backend.aclose()
+    assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
+    spoken = [e.text for e in s.log.of(SentenceSpoken)]
+    assert spoken[-1] == "The projector is on now."
+    assert_clean(spoken)
+    assert_clean(tts.texts)
