@@ -9,6 +9,9 @@ import sys
 
 import pytest
 
+from robovoice.errors import RobotFailure
+from robovoice.middleware.base import Feedback
+from robovoice.middleware.ros2 import Ros2Middleware
 from robovoice.middleware.ros2_standard_servers import GOAL_TOLERANCE_M, goal_place
 
 from .ros2_testkit import HERE, RosWorld
@@ -62,3 +65,35 @@ async def test_a_plain_rclpy_client_drives_the_sim_with_navigate_to_pose(ros: Ro
     poses = [line for line in lines if line.startswith("pose ")]
     assert len(poses) == 2 and poses[0] == poses[1], poses  # the robot stands still after the cancel
     assert [float(v) for v in poses[0].split()[1:]] != [11.5, 4.0]
+
+
+async def test_a_waypoint_manifest_drives_the_sim_through_navigate_to_pose(ros: RosWorld) -> None:
+    """"Go to the kitchen" with no code: tests/ros2/sim_nav2 binds a tool to the sim's standard
+    /navigate_to_pose with a table of its places, as for a Nav2 robot (docs/ros2.md, section 3)."""
+    sim = ros.spawn([sys.executable, "-m", "robovoice.cli", "sim", "--middleware", f"ros2://?domain_id={ros.domain}",
+                     "--speed", "10"])
+    await sim.ready("robovoice sim: ready", bound=30)
+    middleware = Ros2Middleware.from_uri(ros.uri(HERE / "sim_nav2"))
+    await middleware.start()
+    try:
+        announced = middleware.nodes()["sim_nav2"].manifest
+        assert announced is not None
+        schema = announced["tools"][0]["parameters"]["properties"]["target"]
+        assert "kitchen" in schema["enum"] and "front door" in schema["enum"]
+        told: list[str] = []
+
+        async def on_feedback(item: Feedback) -> None:
+            told.append(item.message)
+
+        result = await middleware.run_action("sim_nav2", "/navigate_to_pose", {"target": "kitchen"},
+                                             on_feedback=on_feedback, timeout=30)
+        assert result == {"error_code": 0, "error_msg": ""}
+        assert told and told[-1] == "0.0 m to go" and float(told[0].split()[0]) > 4.0
+        status = await middleware.call("navigation", "get_status", {}, timeout=5)
+        assert isinstance(status, dict) and status["nearest_place"] == "kitchen" and not status["driving"]
+        with pytest.raises(RobotFailure, match="garage") as bad:  # refused before anything is sent
+            await middleware.run_action("sim_nav2", "/navigate_to_pose", {"target": "garage"},
+                                        on_feedback=on_feedback, timeout=5)
+        assert bad.value.code == "invalid_arguments"
+    finally:
+        await middleware.close()
