@@ -4,7 +4,9 @@ A hosted node becomes one rclpy node. Its RPCs are services ``/robovoice/<node>/
 actions action servers of the same names, of the JSON types of the ``robovoice_msgs`` interface
 package (``srv/Call``, ``action/Run``: JSON arguments in, JSON result or error out, progress as
 feedback); its topics are ``std_msgs/String`` JSON on ``/robovoice/topics/<topic>``; and it
-announces its `NodeInfo` (with its manifest) on the latched ``/robovoice/nodes``. So `robovoice
+announces its `NodeInfo` (with its manifest) on the latched ``/robovoice/nodes``. Well-known
+RPCs also get standard servers (`ros2_standard_servers`: NavigateToPose, SetBool) and well-known
+topics standard mirrors (`ros2_standard`). So `robovoice
 serve --middleware ros2://…` finds it with no manifest folder, exactly as over Zenoh.
 
 Handlers run on the event loop; the service and action callbacks wait for them on the host's
