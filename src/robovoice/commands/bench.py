@@ -67,7 +67,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     load = sub.add_parser("load", help="N concurrent MCP clients over streamable HTTP, nodes joining and leaving")
     load.add_argument("--clients", type=positive_int, default=50)
     load.add_argument("--calls", type=positive_int, default=200, help="calls per client (default 200)")
-    load.add_argument("--middleware", choices=["memory", "zenoh"], default="memory", help="where the nodes are")
+    load.add_argument("--middleware", choices=["memory", "zenoh", "ros2"], default="memory", help="where the nodes are")
+    load.add_argument("--domain", type=int, default=120, help="ROS_DOMAIN_ID with --middleware ros2 (default 120)")
     load.set_defaults(run=_load)
 
     soak = sub.add_parser("soak", help="the whole embedded assistant hearing hours of a home (television, music, "
@@ -163,7 +164,8 @@ def _console(args: argparse.Namespace) -> int:
 def _load(args: argparse.Namespace) -> int:
     from robovoice.mcp_server.bench_load import bench_load
 
-    return _print(asyncio.run(bench_load(args.clients, args.calls, middleware=args.middleware)))
+    return _print(asyncio.run(bench_load(args.clients, args.calls, middleware=args.middleware,
+                                         ros_domain=args.domain)))
 
 
 def _soak(args: argparse.Namespace) -> int:

@@ -187,19 +187,18 @@ async def _temporary_audit() -> AsyncIterator[Path]:
 
 
 @contextlib.asynccontextmanager
-async def _robot(middleware: str, sim_speed: float, audit_path: Path) -> AsyncIterator[tuple[RobotSide, Middleware]]:
+async def _robot(middleware: str, sim_speed: float, audit_path: Path,
+                 ros_domain: int) -> AsyncIterator[tuple[RobotSide, Middleware]]:
     """The robot side and the middleware the churning nodes go on: ``memory`` (the sim in this
-    process), or ``zenoh`` (a fresh loopback rendezvous; the stable nodes and the churning ones
-    on two more Zenoh sessions in this process, so every call and presence change crosses Zenoh)."""
+    process), ``zenoh`` (a fresh loopback rendezvous) or ``ros2`` (ROS_DOMAIN_ID `ros_domain`,
+    loopback discovery): the stable nodes and the churning ones on two more sessions in this
+    process, so every call and presence change crosses the network middleware."""
     if middleware == "memory":
         async with open_robot_side(SimAddress(speed=sim_speed, nodes=STABLE_NODES), manifests=None,
                                    audit_log=audit_path) as side:
             yield side, side.middleware
         return
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        port = probe.getsockname()[1]
-    uri = f"zenoh://127.0.0.1:{port}?robot=load"
+    uri = _network_uri(middleware, ros_domain)
     nodes, churning = open_middleware(uri), open_middleware(uri)
     await nodes.start()
     await churning.start()
@@ -216,12 +215,23 @@ async def _robot(middleware: str, sim_speed: float, audit_path: Path) -> AsyncIt
         await nodes.close()
 
 
+def _network_uri(middleware: str, ros_domain: int) -> str:
+    if middleware == "ros2":
+        return f"ros2://?domain_id={ros_domain}"
+    if middleware != "zenoh":
+        raise ValueError(f"middleware {middleware!r}: use memory, zenoh or ros2")
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    return f"zenoh://127.0.0.1:{port}?robot=load"
+
+
 async def bench_load(clients: int = 50, calls: int = 200, *, churn_s: float = 0.5, call_timeout_s: float = 30.0,
-                     sim_speed: float = 20.0, middleware: str = "memory") -> LoadReport:
+                     sim_speed: float = 20.0, middleware: str = "memory", ros_domain: int = 120) -> LoadReport:
     """Run the load (see the module docstring) and report."""
     cpu0 = time.process_time()
     async with (_temporary_audit() as audit_path,
-                _robot(middleware, sim_speed, audit_path) as (side, churn_on),
+                _robot(middleware, sim_speed, audit_path, ros_domain) as (side, churn_on),
                 http_server(side.server, port=0) as endpoint):
         churn = _Churn(churn_on, sim_speed)
         await churn.join()
