@@ -29,6 +29,7 @@ from robovoice.assistant.events import (
 from robovoice.assistant.gate import NOT_REQUESTED, refusal
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
+from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.audio.sentences import SentenceSplitter
@@ -143,14 +144,27 @@ class Assistant:
             if not requested:
                 break
             by_name = {spec.name: spec for spec in specs}
+            ran: list[tuple[ToolCalled, ToolReturned]] = []
             for request in requested:
                 called, returned = await self._run_tool(request, metrics, emit, intent, by_name.get(request.name),
                                                         said)
-                calls.append(called)
-                outcomes.append(returned)
+                ran.append((called, returned))
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
+            calls.extend(c for c, _ in ran)
+            outcomes.extend(r for _, r in ran)
             done = sum(o.error != NOT_REQUESTED for o in outcomes)
-            if len(asked) > 1 and done < len(asked) and step < max_steps - 2:
+            more = len(asked) > 1 and done < len(asked) and step < max_steps - 2
+            # the tool's own phrase answers this step when it fills and nothing was asked it
+            # does not answer: no model step just to word it (assistant/phrase.py)
+            phrase = phrase_answer(intent, self.tools.voice(), ran, {s.name for s in specs if s.read_only})
+            if phrase is not None:
+                await self._say(phrase, metrics, emit)
+                replies.append(phrase)
+                messages.append(ChatMessage("assistant", phrase))
+                if not more:
+                    metrics.mark("phrase_answer")
+                    break
+            if more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next (docs/llm.md)
                 messages.append(ChatMessage("user", f"Now do the next thing I asked: {asked[done]}."))

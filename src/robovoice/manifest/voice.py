@@ -11,13 +11,14 @@ Roles: ``stop`` (the tool a spoken "stop" calls directly, without the model), ``
 whose value carries ``"moving": true|false``: whether the robot moves, whoever drives it).
 
 Phrases are ``str.format`` templates with plain named fields (``{target}``, ``{percent:.0f}``):
-no attribute or index look-ups, no positional fields. They are filled from the call's
-arguments (`start`); its progress report's ``message``, ``progress``, ``total`` and
+no attribute or index look-ups, no positional fields. A yes/no field picks one of two words
+with ``{on:on|off}`` (true: the text before ``|``, false: the text after). They are filled from
+the call's arguments (`start`); its progress report's ``message``, ``progress``, ``total`` and
 ``percent`` (`progress`); the arguments and the top-level fields of the structured result
-(`success`), or of the error body ``error``, ``message``, ``hint`` (`failure`). A field that
-is missing (or a value its format spec does not fit) gives no phrase at all: `fill` returns
-None, it never raises. The same section reaches MCP clients in the tool's ``_meta`` under
-`META_KEY`, so a remote assistant reads it from ``tools/list``.
+(`success`), or of the error body ``error``, ``message``, ``hint`` (`failure`): see
+`result_fields`. A field that is missing (or a value its format spec does not fit) gives no
+phrase at all: `fill` returns None, it never raises. The same section reaches MCP clients in
+the tool's ``_meta`` under `META_KEY`, so a remote assistant reads it from ``tools/list``.
 """
 
 from __future__ import annotations
@@ -66,6 +67,9 @@ def fill(template: str | None, fields: Mapping[str, Any]) -> str | None:
             if not _FIELD.match(name) or name not in fields or fields[name] is None:
                 return None
             value = fields[name]
+            if isinstance(value, bool) and spec and "|" in spec:  # {on:on|off}
+                out.append(spec.split("|", 1)[0 if value else 1])
+                continue
             if conversion:
                 value = _FORMATTER.convert_field(value, conversion)
             out.append(format(value, spec or ""))
@@ -73,6 +77,18 @@ def fill(template: str | None, fields: Mapping[str, Any]) -> str | None:
         return None
     text = "".join(out).strip()
     return text or None
+
+
+def result_fields(arguments: Mapping[str, Any] | None, result: Mapping[str, Any] | None) -> dict[str, Any]:
+    """The fields a `success` / `failure` phrase is filled from: the call's arguments, then the
+    plain values (text, numbers, yes/no) at the top of the structured result (which win).
+    Empty text counts as missing."""
+    merged: dict[str, Any] = {}
+    for part in (arguments or {}, result or {}):
+        for key, item in part.items():
+            if isinstance(item, (str, int, float, bool)) and item != "":
+                merged[key] = item
+    return merged
 
 
 class _Strict(BaseModel):

@@ -8,8 +8,11 @@ phrase with a missing field is not said):
   long action, long before it ends and the model words the result ("On my way to the kitchen.");
 - `progress`: at most one line per `progress_interval_s` ("Still on my way, 4 metres to the
   kitchen."); a tool without a progress phrase has its report's message said as it is. The
-  final report ("arrived ...") is not said: the model's reply says the result;
-- `success` / `failure`: said when the tool returns (most tools leave this to the model).
+  final report ("arrived ...") is not said: the reply says the result.
+
+`success` / `failure` are not the narrator's: they are the assistant's answer when they fill
+(`assistant.phrase`, spoken as reply sentences), so the narrator says nothing when a tool
+returns — saying them here as well would say them twice.
 """
 
 from __future__ import annotations
@@ -91,7 +94,6 @@ class ProgressNarrator:
     def on_result(
         self, name: str, arguments: Mapping[str, Any], failed: bool, result: Mapping[str, Any] | None
     ) -> str | None:
-        """The tool's success or failure phrase, if it declares one."""
-        phrases = self.roles.say(name)
-        body = {k: v for k, v in (result or {}).items() if isinstance(v, (str, int, float, bool))}
-        return fill(phrases.failure if failed else phrases.success, _fields(arguments, body))
+        """Nothing: a tool's success or failure phrase is the assistant's answer (`assistant.phrase`),
+        spoken as a reply sentence. Kept until voice/command.py no longer asks (it would be said twice)."""
+        return None

@@ -1,0 +1,60 @@
+"""A tool's own phrase as the spoken answer, instead of a second model step.
+
+After a tool returns, the model is usually asked again only to word what happened: on the
+embedded model that is 1-2 s, and the wording often adds facts the result does not hold.
+When the tool's manifest declares a `success` (or `failure`) phrase and it fills completely
+from the call's arguments and the structured result (`manifest.voice.fill`), the phrase is
+the answer to that step (docs/voice.md, "Spoken results"). It is used only when:
+
+- the person asked nothing (no clause of theirs is a question or an ability question, as
+  `intent.read_request` reads it): a question about the result ("how far was it?") gets
+  the model, which has the result in front of it;
+- every call of the step has a phrase that fills: a call refused before it ran, a call with
+  arguments the model must correct, or a robot that could not be reached gets the model,
+  which has a hint for each;
+- no call of the step is read-only: the model often looks something up (the battery, where
+  the robot is) before it acts, and a phrase would end the turn before the action.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Mapping, Sequence
+
+from robovoice.assistant.events import ToolCalled, ToolReturned
+from robovoice.assistant.gate import NOT_REQUESTED
+from robovoice.assistant.intent import ClauseKind, Intent
+from robovoice.manifest.voice import VoiceDecl, fill, result_fields
+
+# Errors the assistant itself makes up, not the robot's: the model must answer them (their hints).
+_NOT_THE_ROBOTS = frozenset({NOT_REQUESTED, "invalid_arguments", "tool_unavailable"})
+
+
+def result_phrase(decl: VoiceDecl | None, called: ToolCalled, returned: ToolReturned) -> str | None:
+    """The tool's success or failure phrase filled from this call and its result, or None."""
+    if decl is None or (returned.is_error and returned.error in _NOT_THE_ROBOTS):
+        return None
+    template = decl.say.failure if returned.is_error else decl.say.success
+    return fill(template, result_fields(called.arguments, returned.result))
+
+
+def asks_nothing(intent: Intent | None) -> bool:
+    """The person's words ask no question: a tool's phrase can answer them. Audio given to an
+    audio model has no words to read (None): the model answers."""
+    if intent is None:
+        return False
+    return not any(c.kind in (ClauseKind.QUESTION, ClauseKind.ABILITY) for c in intent.clauses)
+
+
+def phrase_answer(
+    intent: Intent | None, voice: Mapping[str, VoiceDecl], step: Sequence[tuple[ToolCalled, ToolReturned]],
+    read_only: Collection[str] = (),
+) -> str | None:
+    """The words that answer one model step's tool calls without the model, or None when
+    the model must word the answer (see the module docstring). `read_only`: the names of the
+    read-only tools."""
+    if not step or not asks_nothing(intent) or any(called.name in read_only for called, _ in step):
+        return None
+    phrases = [result_phrase(voice.get(called.name), called, returned) for called, returned in step]
+    if any(p is None for p in phrases):
+        return None
+    return " ".join(p for p in phrases if p is not None)
