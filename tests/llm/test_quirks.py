@@ -79,7 +79,7 @@ def assert_no_syntax_in_text(events: list[LLMEvent]) -> None:
     assert not any(s in text for s in SYNTAX), text
 
 
-# --- no finish_reason (llama-cpp-python) --------------------------------------------------------
+# --- no finish_reason ----------------------------------------------------------------------------
 
 
 async def test_no_finish_reason_on_a_text_answer_is_a_stop() -> None:
@@ -104,8 +104,8 @@ async def test_a_stream_cut_without_done_or_finish_reason_is_still_an_error() ->
 
 
 async def test_llama_cpp_bare_functions_head_is_a_call_not_speech() -> None:
-    """What llama-cpp-python's chatml-function-calling sent in the field: content
-    ``functions.get_battery_state:`` and no finish reason."""
+    """What llama-cpp-python's chatml-function-calling sent as a plain reply in the field (its
+    message path is constrained by the call grammar): content ``functions.get_battery_state:``."""
     reply = ToolCallReply((ScriptedCall("get_battery_state", ""),))
     events, _ = await run(Quirks(no_finish_reason=True, tool_calls_as="functions"), reply)
     assert text_of(events) == ""
@@ -185,6 +185,30 @@ async def test_plain_text_is_not_held_back_to_the_end() -> None:
     assert isinstance(first, TextDelta) and first.text == "Hell"
     assert first_at < total - 0.8  # before the 1 s stall, not after it
     assert text_of([first, *rest]) == "Hello there, I am the robot."
+
+
+# --- a server that cannot stream tool calls (llama-cpp-python 0.3.36, chatml-function-calling) -----
+
+
+async def test_an_empty_stream_for_a_tool_call_is_asked_again_without_streaming() -> None:
+    quirks = Quirks(no_streamed_tool_calls=True, keep_alives=True)
+    async with FakeOpenAIServer([DRIVE, TextReply("I'm in the kitchen."), TextReply("Hello.")], quirks=quirks) as srv:
+        llm = OpenAICompatBackend(srv.base_url, srv.model, deadlines=CALM)
+        first = await collect(llm.stream(USER, TOOLS))
+        second = await collect(llm.stream(USER, TOOLS))
+        third = await collect(llm.stream(USER, []))
+        await llm.aclose()
+    assert calls_of(first) == [("navigate_to", {"target": "kitchen"})] and finish_of(first).reason == "tool_calls"
+    assert not llm.streams_tool_calls  # remembered: the next step with tools is not streamed
+    assert text_of(second) == "I'm in the kitchen." and text_of(third) == "Hello."
+    bodies = [r.body for r in srv.requests]
+    assert [b["stream"] for b in bodies] == [True, False, False, True]  # without tools it still streams
+    assert "stream_options" not in bodies[1] and bodies[1]["messages"] == bodies[0]["messages"]
+
+
+async def test_an_empty_stream_without_tools_is_a_clear_error() -> None:
+    with pytest.raises(LLMError, match=r"ended before any answer \(no data, no \[DONE\]\)"):
+        await run(Quirks(no_streamed_tool_calls=True), DRIVE, tools=[])
 
 
 # --- arguments as an object, missing usage, unknown fields, keep-alives -------------------------

@@ -26,22 +26,24 @@ def robot_lines(out: str) -> list[str]:
 
 
 async def test_chat_against_llama_cpp_python_chatml_function_calling_quirks() -> None:
-    """The issue-16 session: bare ``functions.NAME:`` content, no finish reason, SSE pings, no usage."""
-    quirks = Quirks(no_finish_reason=True, tool_calls_as="functions", keep_alives=True, no_usage=True)
+    """The issue-16 session, as llama-cpp-python 0.3.36 answered it (seen with curl): a streamed
+    tool call is an event stream of pings that then closes; a plain reply is constrained by the
+    call grammar, so its content is ``functions.get_battery_state:``; no usage."""
+    quirks = Quirks(no_streamed_tool_calls=True, keep_alives=True, no_usage=True)
     script: list[ScriptedReply] = [
-        ToolCallReply((ScriptedCall("get_battery_state", ""),)),
-        TextReply("My battery is at 80 percent."),
         ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
         TextReply("I'm in the kitchen now."),
+        TextReply("functions.get_battery_state:"),
+        TextReply("My battery is at 80 percent."),
     ]
     async with FakeOpenAIServer(script, quirks=quirks) as server:
-        code, out, err = await chat(server, "how much battery do you have?\nplease drive to the kitchen\n")
+        code, out, err = await chat(server, "please drive to the kitchen\nhow much battery do you have?\n")
     assert code == 0, err
-    assert "→ get_battery_state()" in out and "← get_battery_state ok" in out
     assert "→ navigate_to(target='kitchen')" in out and '"arrived": "kitchen"' in out
-    assert robot_lines(out) == ["robot> My battery is at 80 percent.", "robot> I'm in the kitchen now."]
+    assert "→ get_battery_state()" in out and "← get_battery_state ok" in out
+    assert robot_lines(out) == ["robot> I'm in the kitchen now.", "robot> My battery is at 80 percent."]
     assert "functions." not in out and "Traceback" not in err
-    assert len(server.requests) == 4
+    assert [r.body["stream"] for r in server.requests] == [True, False, False, False, False]
 
 
 async def test_chat_against_a_hermes_server_that_writes_calls_as_tool_call_tags() -> None:

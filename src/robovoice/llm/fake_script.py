@@ -22,7 +22,7 @@ TextCallStyle = Literal["tool_calls", "hermes", "functions", "json", "mistral"]
 class Quirks:
     """How a server instance departs from vLLM's wire format; each one as a real server does it."""
 
-    no_finish_reason: bool = False  # llama-cpp-python: finish_reason stays null; [DONE] ends the stream
+    no_finish_reason: bool = False  # finish_reason stays null; [DONE] ends the stream
     # how a ToolCallReply goes out: "tool_calls" (the standard), or as text in content, as servers
     # without a tool parser pass it through: "hermes" (<tool_call>{...}</tool_call>, Qwen2.5),
     # "functions" (functions.NAME:\n{...}, chatml-function-calling), "json" (a bare {"name", "arguments"}),
@@ -35,6 +35,10 @@ class Quirks:
     busy_status: int | None = None  # the first `busy_requests` requests get this status (429, 503) ...
     busy_retry_after: str | None = "1"  # ... with this Retry-After header (None: no header)
     busy_requests: int = 1
+    # llama-cpp-python 0.3.36 chatml-function-calling: a streamed request answered by a tool call gets
+    # an event stream with nothing but pings (the handler raises after the headers went out); the
+    # same request without streaming is answered
+    no_streamed_tool_calls: bool = False
 
 
 class StreamCut(ConnectionResetError):

@@ -202,6 +202,9 @@ class FakeOpenAIServer:
         reply = await self._next_reply(recorded)
         if isinstance(reply, ErrorReply):
             return _error(reply.status, reply.message, reply.error_type)
+        if quirks.no_streamed_tool_calls and body.get("stream") and isinstance(reply, ToolCallReply):
+            self._script.insert(0, reply)  # the failed request consumed nothing: asked again, it is answered
+            return StreamingResponse(fake_wire.failed_stream(), media_type="text/event-stream")
         await self._pause(reply.pacing.headers_delay_s)
         include_usage = bool((body.get("stream_options") or {}).get("include_usage"))
         if not body.get("stream"):

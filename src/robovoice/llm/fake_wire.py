@@ -35,6 +35,11 @@ def keep_alive() -> bytes:
     return f": ping - {formatdate(usegmt=True)}\r\n\r\n:\n\n".encode()
 
 
+async def failed_stream() -> AsyncIterator[bytes]:
+    """An event stream that ends before any data (`Quirks.no_streamed_tool_calls`)."""
+    yield keep_alive()
+
+
 def _call_id(call: ScriptedCall) -> str:
     return call.id or f"chatcmpl-tool-{uuid.uuid4().hex[:16]}"
 

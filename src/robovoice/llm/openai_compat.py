@@ -10,17 +10,19 @@ timeout is off so that our deadlines (not the library's) decide.
 Real servers' quirks are tolerated (docs/llm.md, "Server quirks"): a stream that ends with
 ``[DONE]`` but no ``finish_reason`` (llama-cpp-python), arguments sent as a JSON object, no
 ``usage``, unknown fields, SSE comments and keep-alives, tool calls written as text in
-``content`` (`text_calls`), and 429/503 with ``Retry-After`` (`retry_after`).
+``content`` (`text_calls`), and 429/503 with ``Retry-After`` (`retry_after`). A server that
+sends an empty event stream for a request with tools (llama-cpp-python 0.3.36's
+``chatml-function-calling`` cannot stream a tool call: it pings, then closes) is asked again
+without streaming, and this backend's tool steps are not streamed from then on.
 """
 
 from __future__ import annotations
 
 import asyncio
-import json
 import logging
 import time
-from collections.abc import AsyncGenerator, AsyncIterator, Awaitable, Iterator, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import AsyncGenerator, AsyncIterator, Awaitable, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any, TypeVar, cast
 
 import httpx
@@ -31,17 +33,21 @@ from robovoice.llm.base import (
     DeadlineExceededError,
     DeadlineName,
     Deadlines,
-    Finished,
     LLMEvent,
     LLMHTTPError,
     TextDelta,
     ToolSpec,
-    Usage,
     has_audio,
-    tool_call_from_raw,
+)
+from robovoice.llm.openai_wire import (
+    TurnState,
+    apply_chunk,
+    error_message_from_body,
+    events_from_completion,
+    parse_sse_line,
 )
 from robovoice.llm.retry_after import RETRYABLE_STATUS, RetryAfterError, retry_after_seconds
-from robovoice.llm.text_calls import TextCall, TextCallParser
+from robovoice.llm.text_calls import TextCallParser
 
 log = logging.getLogger(__name__)
 _T = TypeVar("_T")
@@ -56,153 +62,14 @@ class _Phase:
     at: float
 
 
-@dataclass(slots=True)
-class _PartialCall:
-    id: str = ""
-    name: str = ""
-    arguments: list[str] = field(default_factory=list)
+class EmptyStreamError(LLMError):
+    """The server accepted the request (HTTP 200) but its event stream ended with no data at all."""
 
 
-@dataclass(slots=True)
-class _TurnState:
-    """What a streamed answer has said so far."""
-
-    calls: dict[int, _PartialCall] = field(default_factory=dict)
-    finish_reason: str | None = None
-    usage: Usage | None = None
-    progress: int = 0  # chunks that carried model output (content, reasoning, calls, finish)
-
-    def final_events(self, url: str, text_calls: Sequence[TextCall] = (), *, done: bool = True) -> Iterator[LLMEvent]:
-        """The assembled tool calls (in index order), those written as text, then `Finished`.
-        `done`: the stream ended with ``[DONE]`` (so a missing finish reason is a quirk, not a cut)."""
-        reason = self.finish_reason
-        if reason is None:
-            if not done:  # no finish reason and no [DONE]: the answer may have been cut short
-                raise LLMError(f"stream from {url} ended without a finish reason or [DONE] (cut short?)")
-            reason = "tool_calls" if self.calls or text_calls else "stop"
-            log.debug("stream from %s ended with [DONE] but no finish reason; taken as %r", url, reason)
-        for index in sorted(self.calls):
-            call = self.calls[index]
-            if not call.name:
-                raise LLMError(f"tool call #{index} from {url} has no function name")
-            yield tool_call_from_raw(call.id or f"call_{index}", call.name, "".join(call.arguments))
-        for index, text_call in enumerate(text_calls, start=len(self.calls)):
-            yield tool_call_from_raw(f"call_{index}", text_call.name, text_call.arguments)
-        if text_calls and reason == "stop":  # the server did not know its text was a call
-            reason = "tool_calls"
-        yield Finished(reason, self.usage)
-
-
-def error_message_from_body(body: bytes) -> str:
-    """The server's message from an error body (OpenAI ``{"error": {...}}`` or vLLM's flat form)."""
-    text = body.decode("utf-8", errors="replace").strip()
-    try:
-        data = json.loads(text)
-    except json.JSONDecodeError:
-        return text[:500] or "(empty body)"
-    if isinstance(data, dict):
-        err = data.get("error", data)
-        if isinstance(err, dict) and "message" in err:
-            return str(err["message"])
-        if isinstance(err, str):
-            return err
-    return text[:500]
-
-
-def _usage_from(raw: Any) -> Usage | None:
-    if not isinstance(raw, dict):
-        return None
-    details = raw.get("prompt_tokens_details")
-    cached = details.get("cached_tokens") if isinstance(details, dict) else None
-    return Usage(
-        prompt_tokens=int(raw.get("prompt_tokens") or 0),
-        completion_tokens=int(raw.get("completion_tokens") or 0),
-        cached_prompt_tokens=int(cached) if cached is not None else None,
-    )
-
-
-_MODEL_OUTPUT_KEYS = ("content", "tool_calls", "reasoning_content", "reasoning")
-
-
-def apply_chunk(chunk: Mapping[str, Any], state: _TurnState) -> str:
-    """Fold one ``chat.completion.chunk`` into ``state``; returns its text delta ('' if none)."""
-    if chunk.get("error") or chunk.get("object") == "error":
-        raise LLMError(f"server error in stream: {error_message_from_body(json.dumps(chunk).encode())}")
-    usage = _usage_from(chunk.get("usage"))
-    if usage is not None:
-        state.usage = usage
-    choices = chunk.get("choices") or []
-    if not choices:
-        return ""
-    choice = choices[0]
-    delta = choice.get("delta") or {}
-    if choice.get("finish_reason"):
-        state.finish_reason = str(choice["finish_reason"])
-    # Anything the model produced (reasoning too, which is not spoken) shows it is alive.
-    if choice.get("finish_reason") or any(delta.get(k) for k in _MODEL_OUTPUT_KEYS):
-        state.progress += 1
-    for raw_call in delta.get("tool_calls") or []:
-        index = int(raw_call.get("index", len(state.calls)))
-        call = state.calls.setdefault(index, _PartialCall())
-        if raw_call.get("id"):
-            call.id = str(raw_call["id"])
-        function = raw_call.get("function") or {}
-        name = function.get("name")
-        if name and name != call.name:
-            # Sent once by vLLM/OpenAI; a server that streams the name in pieces is appended.
-            call.name = str(name) if not call.name else call.name + str(name)
-        call.arguments.append(_arguments_text(function.get("arguments")))
-    content = delta.get("content")
-    return content if isinstance(content, str) else ""
-
-
-def _arguments_text(raw: Any) -> str:
-    """Arguments as JSON text: some servers send the object itself instead of a JSON string."""
-    if raw is None:
-        return ""
-    return json.dumps(raw) if isinstance(raw, dict | list) else str(raw)
-
-
-def events_from_completion(body: bytes, url: str, tool_names: Sequence[str] = ()) -> Iterator[LLMEvent]:
-    """Events from a non-streamed ``chat.completion`` (a server that ignored ``stream``)."""
-    try:
-        data = json.loads(body)
-        message = data["choices"][0]["message"]
-        finish_reason = data["choices"][0].get("finish_reason") or "stop"
-    except (json.JSONDecodeError, KeyError, IndexError, TypeError) as exc:
-        raise LLMError(f"unexpected completion body from {url}: {body[:200]!r}") from exc
-    state = _TurnState(finish_reason=str(finish_reason), usage=_usage_from(data.get("usage")))
-    for index, raw in enumerate(message.get("tool_calls") or []):
-        function = raw.get("function") or {}
-        state.calls[index] = _PartialCall(
-            str(raw.get("id") or ""), str(function.get("name") or ""), [_arguments_text(function.get("arguments"))]
-        )
-    content = message.get("content")
-    parser = TextCallParser(tool_names)
-    text = parser.feed(content) if isinstance(content, str) else ""
-    rest, text_calls = parser.finish()
-    if text + rest:
-        yield TextDelta(text + rest)
-    yield from state.final_events(url, text_calls)
-
-
-def parse_sse_line(line: str) -> Mapping[str, Any] | None:
-    """One SSE line → a chunk; ``None`` for comments, blank and non-data lines;
-    ``{"[DONE]": True}`` for the end marker."""
-    if not line.startswith("data:"):
-        return None  # blank separator, ": keep-alive" comment, "event:", "id:" ...
-    payload = line[5:].strip()
-    if payload == "[DONE]":
-        return {"[DONE]": True}
-    if not payload:
-        return None
-    try:
-        data = json.loads(payload)
-    except json.JSONDecodeError as exc:
-        raise LLMError(f"malformed SSE data from server: {payload[:200]!r}") from exc
-    if not isinstance(data, dict):
-        raise LLMError(f"unexpected SSE data from server: {payload[:200]!r}")
-    return data
+def _unstreamed(body: Mapping[str, Any]) -> dict[str, Any]:
+    out = {k: v for k, v in body.items() if k != "stream_options"}  # only allowed when streaming
+    out["stream"] = False
+    return out
 
 
 class OpenAICompatBackend:
@@ -231,6 +98,7 @@ class OpenAICompatBackend:
         self.extra_body = dict(extra_body or {})
         self.temperature = temperature
         self.include_usage = include_usage
+        self.streams_tool_calls = True  # False once the server sent an empty stream for a request with tools
         headers = {"Accept": "text/event-stream"}
         if api_key:
             headers["Authorization"] = f"Bearer {api_key}"
@@ -268,11 +136,32 @@ class OpenAICompatBackend:
         total_at = start + d.total_s
         first = _Phase("first_token", d.first_token_s, min(start + d.first_token_s, total_at))
         names = [t.name for t in tools]
-        response = await self._open(self.request_body(messages, tools), first, total_at)
+        body = self.request_body(messages, tools)
+        if tools and not self.streams_tool_calls:
+            body = _unstreamed(body)
+        try:
+            async for event in self._answer(body, start, first, total_at, names):
+                yield event
+        except EmptyStreamError:
+            if not tools or body["stream"] is False:
+                raise
+            log.warning("%s sent an empty event stream for a request with tools (a server that cannot "
+                        "stream tool calls, e.g. llama-cpp-python's chatml-function-calling): asked again "
+                        "without streaming, and so from now on", self.name)
+            self.streams_tool_calls = False
+            again = _Phase("first_token", d.first_token_s, min(time.monotonic() + d.first_token_s, total_at))
+            async for event in self._answer(_unstreamed(body), start, again, total_at, names):
+                yield event
+
+    async def _answer(
+        self, body: dict[str, Any], start: float, first: _Phase, total_at: float, names: Sequence[str]
+    ) -> AsyncIterator[LLMEvent]:
+        """One request and its answer's events, streamed or not (a server may ignore ``stream``)."""
+        response = await self._open(body, first, total_at)
         try:
             if response.headers.get("content-type", "").startswith("application/json"):
-                body = await self._bounded(response.aread(), first, total_at)
-                for event in events_from_completion(body, self.url, names):
+                data = await self._bounded(response.aread(), first, total_at)
+                for event in events_from_completion(data, self.url, names):
                     yield event
                 return
             async for event in self._events(response, start, first, total_at, names):
@@ -325,9 +214,10 @@ class OpenAICompatBackend:
         self, response: httpx.Response, start: float, first: _Phase, total_at: float, tool_names: Sequence[str]
     ) -> AsyncIterator[LLMEvent]:
         idle_s = self.deadlines.idle_s
-        state = _TurnState()
+        state = TurnState()
         parser = TextCallParser(tool_names)  # holds back content that may be a call written as text
         done = False
+        data_lines = 0
         lines = cast(AsyncGenerator[str, None], response.aiter_lines())  # an async generator
         phase = first
         try:
@@ -341,6 +231,7 @@ class OpenAICompatBackend:
                 chunk = parse_sse_line(line)
                 if chunk is None:
                     continue
+                data_lines += 1
                 if "[DONE]" in chunk:
                     done = True
                     break
@@ -355,6 +246,9 @@ class OpenAICompatBackend:
                     yield TextDelta(released)
         finally:
             await lines.aclose()
+        if not data_lines:
+            raise EmptyStreamError(f"stream from {self.url} ended before any answer (no data, no [DONE]): "
+                                   "the server failed after accepting the request; its log says why")
         rest, text_calls = parser.finish()
         if rest:
             yield TextDelta(rest)
