@@ -63,7 +63,16 @@ def run_soak_command(*, hours: float, seed: int, gap_minutes: float, sample_minu
                      as_json: bool) -> int:
     settings = SoakSettings(hours=hours, seed=seed, mean_gap_minutes=gap_minutes, sample_minutes=sample_minutes,
                             warm_up_minutes=min(15.0, hours * 60.0 / 8))
-    report = asyncio.run(soak_with_embedded_model(settings))
+    progress = logging.getLogger("robovoice.soak")  # progress on stderr: a long run says where it is
+    progress.setLevel(logging.INFO)
+    progress.propagate = False
+    handler = logging.StreamHandler()
+    handler.setFormatter(logging.Formatter("%(asctime)s %(message)s"))
+    progress.addHandler(handler)
+    try:
+        report = asyncio.run(soak_with_embedded_model(settings))
+    finally:
+        progress.removeHandler(handler)
     if plot is not None and report.samples:
         write_memory_plot(report, plot)
     print(json.dumps(report.to_dict(), indent=1) if as_json else summary(report))  # the command's output

@@ -174,16 +174,20 @@ async def _script(run: _Run, settings: SoakSettings, sounds: SoakSounds, rng: np
                 break
             outcome = await _give(run, next_command(rng, run.sim.state), sounds, settings.turn_timeout_s)
             run.tally.outcomes.append(outcome)
-            log.info("soak %.0f s: %s -> %s", outcome.sim_at, outcome.command.say,
+            log.info("soak %.0f s (wall %.1f s): %s -> %s", outcome.sim_at, outcome.wall_s, outcome.command.say,
                      "ok" if outcome.done else outcome.problem)
     finally:
         run.room.close()
 
 
-async def _sampler(room: SimulatedRoom, samples: list[Sample], every_s: float, wall0: float) -> None:
+async def _sampler(room: SimulatedRoom, samples: list[Sample], every_s: float, wall0: float, tally: Tally) -> None:
     t = 0.0
     while True:
-        samples.append(take_sample(room.now, time.perf_counter() - wall0))
+        sample = take_sample(room.now, time.perf_counter() - wall0)
+        samples.append(sample)
+        log.info("soak sample %s; commands %d given, %d answered; false wakes %d; unasked %d; errors %d",
+                 sample.to_dict(), len(tally.outcomes), sum(o.answered for o in tally.outcomes), tally.false_wakes,
+                 len(tally.unasked), tally.error_logs)
         t += every_s
         await room.until(t, NEVER)
 
@@ -231,7 +235,7 @@ async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSetti
             try:
                 async with asyncio.TaskGroup() as group:
                     group.create_task(pipeline.run(finish_timeout_s=30.0), name="soak-pipeline")
-                    sampler = group.create_task(_sampler(room, samples, settings.sample_minutes * 60.0, wall0),
+                    sampler = group.create_task(_sampler(room, samples, settings.sample_minutes * 60.0, wall0, tally),
                                                 name="soak-sampler")
                     await _script(run, settings, sounds, rng)
                     sampler.cancel()
