@@ -23,6 +23,7 @@ Folders come from the environment through `environment()`; secrets from files th
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import os
 import re
@@ -30,13 +31,17 @@ import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path, PurePath
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
+from urllib.parse import urlsplit
 
 from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from robovoice.address import HttpAddress, LocalAddress, RobotAddress, StdioAddress, parse_robot_address
 from robovoice.errors import ConfigError
 from robovoice.urls import check_http_url
+
+if TYPE_CHECKING:
+    from robovoice.llm.base import Deadlines
 
 log = logging.getLogger(__name__)
 
@@ -111,9 +116,28 @@ def _new_form(old: Mapping[str, Any]) -> str:
     return "; ".join(lines)
 
 
+# What serves a url backend's model; sets its deadlines (robovoice.llm.base.DEADLINES_BY_KIND).
+BackendKind = Literal["local-cpu", "edge-gpu", "cloud"]
+
+
+def kind_for_url(url: str) -> BackendKind:
+    """The kind a URL backend is taken to be when the config does not say: a server on this
+    machine runs on its CPU; https is a hosted API; anything else a GPU server nearby."""
+    parts = urlsplit(url)
+    host = (parts.hostname or "").lower()
+    if host == "localhost" or host == "::1" or host.startswith("127."):
+        return "local-cpu"
+    return "cloud" if parts.scheme == "https" else "edge-gpu"
+
+
 class BackendConfig(_Frozen):
+    """One ``[[llm.backends]]`` entry. A url backend's `kind` (default: `kind_for_url`) gives
+    its deadlines (`DEADLINES_BY_KIND`); `connect_s` / `first_token_s` override two of them
+    and, left out, are filled in from the kind, so they always hold the values in force."""
+
     url: str | None = None
     model: str | None = None
+    kind: BackendKind | None = None
     local: bool = False
     model_path: Path | None = None
     api_key_env: str | None = None
@@ -122,6 +146,28 @@ class BackendConfig(_Frozen):
     connect_s: float | None = Field(default=None, gt=0)
     first_token_s: float | None = Field(default=None, gt=0)
     extra_body: dict[str, Any] = Field(default_factory=dict)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _kind_defaults(cls, data: Any) -> Any:
+        if not isinstance(data, Mapping) or not isinstance(data.get("url"), str) or data.get("local"):
+            return data  # a local backend, or one the checks below reject
+        from robovoice.llm.base import DEADLINES_BY_KIND  # robovoice.llm imports this module
+
+        kind = data.get("kind") or kind_for_url(data["url"])
+        if kind not in DEADLINES_BY_KIND:
+            return data  # the field check names the accepted kinds
+        defaults = DEADLINES_BY_KIND[kind]
+        return {"connect_s": defaults.connect_s, "first_token_s": defaults.first_token_s, **data, "kind": kind}
+
+    def deadlines(self) -> Deadlines | None:
+        """A url backend's deadlines: its kind's, with `connect_s` / `first_token_s` from the file."""
+        from robovoice.llm.base import DEADLINES_BY_KIND
+
+        if self.kind is None:
+            return None
+        return dataclasses.replace(DEADLINES_BY_KIND[self.kind], connect_s=self.connect_s or 0.0,
+                                   first_token_s=self.first_token_s or 0.0)
 
     @field_validator("url")
     @classmethod
@@ -142,7 +188,8 @@ class BackendConfig(_Frozen):
         if self.api_key_env and self.api_key_file:
             raise ValueError("give the API key as api_key_env or api_key_file, not both")
         if self.local:
-            misplaced = [name for name in ("model", "api_key_env", "api_key_file", "connect_s", "first_token_s")
+            misplaced = [name for name in ("model", "kind", "api_key_env", "api_key_file", "connect_s",
+                                           "first_token_s")
                          if getattr(self, name) is not None] + (["accepts_audio"] if self.accepts_audio else []) + (
                 ["extra_body"] if self.extra_body else [])
             if misplaced:
@@ -191,6 +238,10 @@ class VoiceConfig(_Frozen):
     stop_reply: str = "Stopped."  # after a spoken stop (unless the stop tool's manifest says otherwise)
     stop_failed_reply: str = "I could not stop the robot!"
     speech_queue: int = Field(default=8, ge=1)  # sentences queued for speech
+    # said once per turn when nothing else would be heard this long after the user's words end
+    # (a model still reading its prompt); "" = never
+    one_moment: str = "One moment."
+    one_moment_after_s: float = Field(default=1.5, gt=0)
     stop_timeout_s: float = Field(default=5.0, gt=0)  # the stop tool's answer, at most
     # speech-to-text: Whisper tiny.en (takes vocabulary hints), Moonshine base-en, or none
     # (only with an audio-capable model)

@@ -18,9 +18,12 @@ import base64
 import json
 from collections.abc import AsyncGenerator, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal, Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Any, Literal, Protocol, runtime_checkable
 
 from robovoice.errors import LLMError
+
+if TYPE_CHECKING:
+    from robovoice.config import BackendKind
 
 Role = Literal["system", "user", "assistant", "tool"]
 DeadlineName = Literal["connect", "first_token", "idle", "total"]
@@ -203,15 +206,28 @@ def tool_call_from_raw(call_id: str, name: str, raw_arguments: str) -> ToolCallR
 class Deadlines:
     """Every wait on a model is bounded (seconds).
 
-    connect: TCP/TLS connection. first_token: from sending the request to the first
-    content or tool-call chunk (covers prefill; a local CPU model needs more).
-    idle: longest gap between chunks once streaming. total: the whole turn.
+    Two ways a server keeps the user waiting, told apart:
+    *unreachable* — connect: TCP/TLS connection; a refused connection fails at once and
+    a failover chain moves on, only a silent (firewalled) host waits this long;
+    *thinking* — first_token: from sending the request to the first content or tool-call
+    chunk, while the server reads the prompt (a CPU server needs far longer than a GPU).
+    idle: longest gap between chunks once streaming. total: one model call, start to end.
     """
 
     connect_s: float = 3.0
     first_token_s: float = 8.0
     idle_s: float = 10.0
     total_s: float = 60.0
+
+# Defaults by kind (docs/llm.md, "Deadlines"). local-cpu: a llama.cpp server on the robot's own
+# CPU; a cold ~530-token prompt took 10-40 s on 2 loaded cores. edge-gpu: vLLM or llama.cpp on a
+# GPU in the building, a few hundred ms when well, so 10 s means it is stuck. cloud: a hosted API,
+# queueing included; TLS over the internet gets a longer connect.
+DEADLINES_BY_KIND: Mapping[BackendKind, Deadlines] = {
+    "local-cpu": Deadlines(connect_s=2.0, first_token_s=60.0, idle_s=20.0, total_s=120.0),
+    "edge-gpu": Deadlines(connect_s=2.0, first_token_s=10.0, idle_s=10.0, total_s=60.0),
+    "cloud": Deadlines(connect_s=5.0, first_token_s=15.0, idle_s=15.0, total_s=60.0),
+}
 
 
 # --- the seam -------------------------------------------------------------------------

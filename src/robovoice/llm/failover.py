@@ -10,6 +10,10 @@ than refusing without trying). When all fail, `AllBackendsFailedError` (a
 `BackendUnavailableError`) lists every reason; the assistant then says
 `FALLBACK_MESSAGE`.
 
+How long a backend may take is its own business (`Deadlines`: a refused connection fails
+at once, a CPU server may think for a minute before its first token); the chain's
+`first_event_timeout_s` is only a safety net for backends without deadlines.
+
 Once a backend has yielded an event the turn belongs to it: a later failure is
 raised (and marks it unhealthy) rather than replayed elsewhere, which would
 duplicate speech or tool calls.
@@ -25,9 +29,11 @@ from collections.abc import AsyncGenerator, Callable, Sequence
 from dataclasses import dataclass
 
 from robovoice.errors import BackendUnavailableError, ConfigError, LLMError
-from robovoice.llm.base import ChatMessage, LLMBackend, LLMEvent, ToolSpec, has_audio
+from robovoice.llm.base import ChatMessage, Deadlines, LLMBackend, LLMEvent, ToolSpec, has_audio
 
 log = logging.getLogger(__name__)
+
+BOUND_GRACE_S = 1.0  # the chain waits this much past a backend's own first-token deadline
 
 FALLBACK_MESSAGE = "I can't reach my language model right now. Please try again in a moment."
 
@@ -152,19 +158,29 @@ class FailoverBackend:
             ready.append(soonest)
         return ready
 
+    def _first_event_bound(self, backend: LLMBackend) -> float | None:
+        """The chain's own bound on a backend's first event: a safety net behind the backend's
+        deadlines, never shorter than they are (a CPU server may think for a minute), so the
+        backend's own, more precise error is the one reported."""
+        own = getattr(backend, "deadlines", None)
+        if not isinstance(own, Deadlines) or self.first_event_timeout_s is None:
+            return self.first_event_timeout_s
+        return max(self.first_event_timeout_s, own.connect_s + own.first_token_s + BOUND_GRACE_S)
+
     async def stream(
         self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
     ) -> AsyncGenerator[LLMEvent, None]:
         reasons: dict[str, str] = {}
         for backend in self._candidates(has_audio(messages), reasons):
             async with contextlib.aclosing(backend.stream(messages, tools)) as events:
+                bound = self._first_event_bound(backend)
                 try:
-                    async with asyncio.timeout(self.first_event_timeout_s):
+                    async with asyncio.timeout(bound):
                         first = await anext(events)
                 except StopAsyncIteration:
                     reason = "ended the stream without any event"
                 except TimeoutError:
-                    reason = f"no first event within {self.first_event_timeout_s:g} s"
+                    reason = f"no first event within {bound:g} s"
                 except LLMError as exc:
                     reason = str(exc) or type(exc).__name__
                 else:

@@ -22,6 +22,7 @@ from robovoice.assistant.loop import Assistant, TurnResult
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.llm.base import AudioPart, ContentPart
 from robovoice.voice.answers import AnswerRecorder
+from robovoice.voice.confidence import DIDNT_CATCH, transcript_of, unsure_reason
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import Emit, TranscriptReady, VoiceTurnFinished, VoiceTurnStarted
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
@@ -36,6 +37,9 @@ from robovoice.voice.turns import TurnTaking, Verdict
 from robovoice.voice.utterance import Transcribing, Transcription, strip_wake_words, trim_to_wake, wav_bytes
 
 WAKE_ONLY_S = 0.2  # without STT: less speech than this after the wake word = wake word alone
+# "One moment." waits at least this long for the model even when speech-to-text already used up
+# the user's patience: a fast model's answer is better than a filler just before it
+MODEL_GRACE_S = 0.5
 
 
 class Commands:
@@ -102,6 +106,7 @@ class CommandTurn:
         self._latest: dict[str, ToolCalled] = {}  # by tool name: progress reports carry no call id
         self._acks: dict[str, int | None] = {}  # call id -> speech handle of its acknowledgement
         self._moves: set[str] = set()  # call ids of motion tools under way
+        self._heard = False  # something of this turn has been queued for speech
 
     async def run(self, utt: HeardUtterance, verdict: Verdict, speculation: Transcription | None) -> None:
         c = self._c
@@ -131,13 +136,22 @@ class CommandTurn:
                 if is_stop_command(text):
                     await c.stopper.stop(text, utt.end, self.id, metrics)
                     return
+                if (unsure := unsure_reason(transcript_of(c.stt.stt, raw), text)) is not None:
+                    c.turns.rearm(utt.end)  # the person may say it again without the wake word
+                    self._say(DIDNT_CATCH, "reply")
+                    await report_ignored(c.emit, c.stats, unsure, utt, raw)
+                    return
                 content = (AudioPart(wav_bytes(audio)),) if c.audio_native else text
             mode: Literal["text", "audio"] = "audio" if isinstance(content, tuple) else "text"
             c.stats.turns += 1
             started = True
             c.turns.turn_started()
             await c.emit(VoiceTurnStarted(self.id, mode, text, audio.duration_s, verdict.follow_up))
-            result = await c.assistant.turn(content, metrics=metrics, observer=self.on_event)
+            filler = asyncio.create_task(self._one_moment(), name=f"one-moment-{self.id}")
+            try:
+                result = await c.assistant.turn(content, metrics=metrics, observer=self.on_event)
+            finally:
+                filler.cancel()
             c.answers.add(result)
             c.turns.turn_finished(asked_question=result.reply.rstrip().endswith("?"))
             self._end_motion()
@@ -159,7 +173,23 @@ class CommandTurn:
         self._moves.clear()
 
     def _say(self, text: str | None, kind: str) -> int | None:
-        return self._c.speech.say(text, turn=self.id, kind=kind, metrics=self.metrics) if text else None
+        handle = self._c.speech.say(text, turn=self.id, kind=kind, metrics=self.metrics) if text else None
+        self._heard = self._heard or handle is not None
+        return handle
+
+    async def _one_moment(self) -> None:
+        """Say "One moment." if this turn would otherwise stay silent past `one_moment_after_s`
+        from the end of the user's turn (a model still reading its prompt), and the model has had
+        `MODEL_GRACE_S`. Marked ``one_moment`` in the metrics; ``first_audio`` stays the answer's."""
+        speech = self._c.config.speech
+        if not speech.one_moment:
+            return
+        now = self.metrics.clock()
+        await asyncio.sleep(max(self.metrics.start + speech.one_moment_after_s - now, MODEL_GRACE_S))
+        if not self._heard:
+            self._heard = True
+            self.metrics.mark("one_moment")
+            self._c.speech.say(speech.one_moment, turn=self.id, kind="wait")
 
     async def on_event(self, event: TurnEvent) -> None:
         """This turn's observer of the assistant: what it produces goes to speech."""

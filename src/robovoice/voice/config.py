@@ -72,16 +72,20 @@ class SpeechConfig:
     """Spoken output. `progress_interval_s`: at most one progress line per this many
     (wall-clock) seconds of a long action; `stop_reply` / `stop_failed_reply`: said after a
     spoken stop (unless the stop tool's manifest declares its own phrases); `queue_sentences`:
-    how many sentences may wait for speech."""
+    how many sentences may wait for speech; `one_moment`: said once in a turn when nothing
+    else would be heard `one_moment_after_s` after the end of the user's turn ("" = never)."""
 
     progress_interval_s: float
     stop_reply: str
     stop_failed_reply: str
     queue_sentences: int
+    one_moment: str
+    one_moment_after_s: float
 
     @classmethod
     def from_config(cls, voice: VoiceConfig) -> SpeechConfig:
-        return cls(voice.progress_interval_s, voice.stop_reply, voice.stop_failed_reply, voice.speech_queue)
+        return cls(voice.progress_interval_s, voice.stop_reply, voice.stop_failed_reply, voice.speech_queue,
+                   voice.one_moment.strip(), voice.one_moment_after_s)
 
 
 @dataclass(frozen=True, slots=True)
