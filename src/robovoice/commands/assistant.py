@@ -195,9 +195,15 @@ async def _eval(args: argparse.Namespace) -> int:
         print(json.dumps(summary, indent=None))
     else:
         print(f"{summary['passed']}/{summary['cases']} passed ({summary['accuracy']:.1%}); "
-              f"input → first sentence p50 {summary['p50']} ms, p95 {summary['p95']} ms; backend {summary['backend']}")
+              f"input (end-of-turn decision, or text) → first sentence p50 {summary['p50']} ms, "
+              f"p95 {summary['p95']} ms; backend {summary['backend']}")
         for stage, figures in summary["stages"].items():
             print(f"  {stage:<16} p50 {figures['p50']:>8} ms   p95 {figures['p95']:>8} ms   (n={figures['n']})")
+        spoken = summary["speech_end_to_first_audio"]
+        if spoken is not None:  # audio cases: from the user's last word, not the end-of-turn decision
+            print(f"from the last word: first audio p50 {spoken['p50']} ms, p95 {spoken['p95']} ms (n={spoken['n']})")
+            for stage, figures in summary["stages_from_speech_end"].items():
+                print(f"  {stage:<16} p50 {figures['p50']:>8} ms   p95 {figures['p95']:>8} ms   (n={figures['n']})")
     return 0
 
 

@@ -22,8 +22,10 @@ from robovoice.llm.base import LLMBackend
 
 log = logging.getLogger(__name__)
 
-# The headline latency of a turn: input in (end of speech, or text) → first sentence out.
+# The headline latency of a turn: input in (the end-of-turn decision, or text) → first sentence out.
 HEADLINE_STAGE = "first_sentence"
+# Audio cases also report every stage from the user's last word (issue 12), this one first.
+SPEECH_END_STAGE = "first_audio"
 
 
 class CaseRobot(Protocol):
@@ -73,10 +75,14 @@ class CaseResult:
     false_actuations: list[str] = field(default_factory=list)
     extra: dict[str, Any] = field(default_factory=dict)
     case_class: str | None = None  # the case's `class` field, for the per-class figures
+    # audio cases: the stages in ms from the user's last word (`TurnMetrics.from_speech_end`)
+    from_speech_end_ms: dict[str, float] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         out = {"id": self.id, "passed": self.passed, "reason": self.reason, "calls": self.calls,
                "false_actuations": self.false_actuations, "reply": self.reply, "latency_ms": self.latency_ms}
+        if self.from_speech_end_ms:
+            out["latency_from_speech_end_ms"] = self.from_speech_end_ms
         out.update(self.extra)
         return out
 
@@ -102,6 +108,8 @@ class EvalReport:
     def to_dict(self) -> dict[str, Any]:
         passed = sum(r.passed for r in self.results)
         headline = [r.latency_ms[HEADLINE_STAGE] for r in self.results if HEADLINE_STAGE in r.latency_ms]
+        spoken = [r.from_speech_end_ms[SPEECH_END_STAGE] for r in self.results
+                  if SPEECH_END_STAGE in r.from_speech_end_ms]
         return {
             "cases": len(self.results),
             "passed": passed,
@@ -110,7 +118,11 @@ class EvalReport:
             "p50": round(percentile(headline, 50), 1) if headline else None,
             "p95": round(percentile(headline, 95), 1) if headline else None,
             "latency_stage": HEADLINE_STAGE,
-            "stages": summarise(r.latency_ms for r in self.results),
+            "stages": summarise(r.latency_ms for r in self.results),  # from the end-of-turn decision (or text)
+            "speech_end_to_first_audio": ({"p50": round(percentile(spoken, 50), 1),
+                                           "p95": round(percentile(spoken, 95), 1), "n": len(spoken)}
+                                          if spoken else None),
+            "stages_from_speech_end": summarise(r.from_speech_end_ms for r in self.results if r.from_speech_end_ms),
             "classes": self.by_class(),
             "backend": self.backend,
             "wall_s": round(self.wall_s, 1),
@@ -163,6 +175,7 @@ async def run_case(
         false_actuations=list(verdict.false_actuations),
         extra=details,
         case_class=case.case_class,
+        from_speech_end_ms=turns[0].metrics.from_speech_end() if turns else {},
     )
 
 

@@ -17,6 +17,11 @@ one `asyncio.TaskGroup` in `run()`:
 - the motion watch (`motion.MotionWatch`: the robot's pose tool asked in the background) and
   the tool watch (the robot's voice roles and speech-to-text hint, rebuilt when its tools change).
 
+Latency origins: each chunk's arrival is noted in a `clock.StreamAnchor`, so a command turn
+can place the user's last word (the utterance's end, in stream time) on the wall clock where
+its stages are timed (`TurnMetrics.speech_end`). A source that plays faster than real time
+says so with a ``speed`` attribute (`SimulatedRoom`'s microphone); others are taken as real time.
+
 Control: a wake word while the robot is busy (speaking or answering) is a barge-in: queued
 speech is dropped, the speaker stopped and the active turn cancelled (an action it started is
 cancelled with it). A spoken stop calls the robot's stop tool (its manifest's ``stop`` role)
@@ -40,6 +45,7 @@ from robovoice.audio.vad import Endpointer, SpeechSegmenter
 from robovoice.audio.wake import WakeDecider, WakeWordSpotter
 from robovoice.llm.base import LLMBackend, ToolSpec
 from robovoice.voice.answers import AnswerRecorder
+from robovoice.voice.clock import StreamAnchor
 from robovoice.voice.command import Commands
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.echo import PlaybackReference
@@ -133,6 +139,9 @@ class VoicePipeline:
         self.router = Router(cfg, audio_native=self.audio_native, stt=self.stt, turns=self.turns,
                              speech=self.speech, motion=self.motion, commands=self.commands, stopper=self.stopper,
                              floor=self.floor, stats=self.stats, emit=self._emit)
+        # a source's own pace (stream s per wall s); not part of the AudioSource protocol
+        self.anchor = StreamAnchor(float(getattr(source, "speed", 1.0)))
+        self.commands.wall_time = self.anchor.wall_time
         self.roles = VoiceRoles()
         self.commands.hint = command_hint(cfg.wake_phrase, [], cfg.vocabulary)
         self._listed: list[ToolSpec] | None = None
@@ -213,6 +222,7 @@ class VoicePipeline:
     async def _capture(self) -> None:
         async for chunk in converted(aiter(self.source), MODEL_FORMAT):
             received = time.perf_counter()
+            self.anchor.observe(received, chunk.end_timestamp)
             if self._remote_probe is not None:
                 self.listener.external_playback = self._remote_probe()
             heard = await self._front_exec.run(self.listener.process, chunk)

@@ -8,13 +8,19 @@ echo path of delay, gain and a few reflections (`EchoPath`). Everything played i
 written to the `PlaybackReference` at the moment it sounds, as a real playback path would,
 so echo cancellation can be tested against exactly the signal a robot would have.
 
-Time is the room's stream time in seconds (chunk timestamps), starting at `start`.
+Time is the room's stream time in seconds (chunk timestamps), starting at `start`. A paced
+room's stream time is tied to the event loop's clock: stream time `start + t` is captured at
+wall time ``wall0 + t / speed`` (a chunk is delivered once its last sample is due, like a sound
+card's buffer). The robot's speech starts sounding no earlier than the stream position of the
+moment it reaches the speaker (`RoomSpeaker.write`), so latencies read off `played` (or a
+session recording, `voice.recording`) are the ones the pipeline's clock sees.
 """
 
 from __future__ import annotations
 
 import asyncio
 import logging
+import math
 from collections import deque
 from collections.abc import AsyncIterator
 from dataclasses import dataclass, field
@@ -109,6 +115,7 @@ class SimulatedRoom:
         self._drained.set()
         self._tick = asyncio.Event()
         self._closed = False
+        self._wall0: float | None = None  # the loop time of stream time `start` (paced rooms, once started)
         self.played: list[tuple[float, AudioChunk]] = []  # the robot's speech as it sounded
         self._record = record
         self._recorded: list[AudioChunk] = []
@@ -121,6 +128,14 @@ class SimulatedRoom:
     def now(self) -> float:
         """Stream time up to which the microphone has produced audio."""
         return self._start + self._index / RATE
+
+    def _wall_index(self) -> int:
+        """The stream position (samples) of the present moment: where audio written now sounds.
+        An unpaced room (or one not yet started) has no such moment: the next chunk's start."""
+        if self._wall0 is None or math.isinf(self.speed):
+            return self._index
+        due = round((asyncio.get_running_loop().time() - self._wall0) * self.speed * RATE)
+        return max(self._index, due)
 
     def _at(self, t: float | None) -> int:
         return self._index if t is None else max(self._index, round((t - self._start) * RATE))
@@ -136,9 +151,11 @@ class SimulatedRoom:
 
     def say(self, audio: AudioChunk, *, at: float | None = None, gap_s: float = 0.0) -> Speech:
         """The person speaks `audio`: at stream time `at`, or after what they are saying now
-        (plus `gap_s`), never before now."""
+        (plus `gap_s`), never before now (the present moment, even when the microphone's
+        consumer has fallen behind it)."""
         samples = as_float32(convert(audio, _F32).samples)
-        i0 = self._at(at) if at is not None else max(self._index, self._user_end + round(gap_s * RATE))
+        # "now" is the present moment, as for the robot's speaker (see `_wall_index`)
+        i0 = self._at(at) if at is not None else max(self._wall_index(), self._user_end + round(gap_s * RATE))
         speech = Speech(self._start + i0 / RATE, self._start + (i0 + samples.shape[0]) / RATE)
         self._user.append((i0, samples, speech))
         self._user_end = max(self._user_end, i0 + samples.shape[0])
@@ -228,7 +245,7 @@ class SimulatedRoom:
 
     async def _chunks(self) -> AsyncIterator[AudioChunk]:
         loop = asyncio.get_running_loop()
-        wall0 = loop.time()
+        wall0 = self._wall0 = loop.time()
         produced = 0
         while not self._closed:
             due = wall0 + (produced + 1) * self.chunk_frames / RATE / self.speed
@@ -255,6 +272,11 @@ class RoomMicrophone:
     def format(self) -> AudioFormat:
         return MODEL_FORMAT
 
+    @property
+    def speed(self) -> float:
+        """Stream seconds per wall second (`voice.clock.StreamAnchor` maps stream time with it)."""
+        return self._room.speed
+
     def __aiter__(self) -> AsyncIterator[AudioChunk]:
         if self._iterated:
             raise AudioError("the room microphone can be iterated once")
@@ -278,6 +300,12 @@ class RoomSpeaker:
         samples = as_float32(convert(chunk, _F32).samples)
         if room._closed:
             return
+        if room._robot_queued == 0:
+            # the speaker was silent: this sounds from the present moment on, never before it
+            # was written (the next chunk may have begun up to a chunk earlier)
+            lead = room._wall_index() - room._index
+            if lead > 0:
+                samples = np.concatenate([np.zeros(lead, dtype=np.float32), samples])
         room._robot.append(samples)
         room._robot_queued += samples.shape[0]
         room._drained.clear()
