@@ -204,6 +204,9 @@ async def test_an_empty_stream_for_a_tool_call_is_asked_again_without_streaming(
     bodies = [r.body for r in srv.requests]
     assert [b["stream"] for b in bodies] == [True, False, False, True]  # without tools it still streams
     assert "stream_options" not in bodies[1] and bodies[1]["messages"] == bodies[0]["messages"]
+    peers = [r.peer for r in srv.requests]
+    assert peers[1] != peers[0]  # asked again on a fresh connection (llama-cpp-python drops the old one) ...
+    assert peers[3] == peers[2] == peers[1]  # ... which is then kept alive as usual
 
 
 async def test_an_empty_stream_without_tools_is_a_clear_error() -> None:

@@ -108,6 +108,7 @@ class RecordedRequest:
     path: str
     headers: Mapping[str, str]
     body: Mapping[str, Any]
+    peer: str = ""  # the client's host:port: which connection the request came on
 
     @property
     def messages(self) -> list[dict[str, Any]]:

@@ -188,7 +188,8 @@ class FakeOpenAIServer:
         except json.JSONDecodeError as exc:
             return _error(400, f"invalid JSON body: {exc}")
         fields = body if isinstance(body, dict) else {}
-        recorded = RecordedRequest(request.url.path, dict(request.headers), fields)
+        peer = f"{request.client.host}:{request.client.port}" if request.client is not None else ""
+        recorded = RecordedRequest(request.url.path, dict(request.headers), fields, peer)
         self.requests.append(recorded)
         if self.api_key is not None and request.headers.get("authorization") != f"Bearer {self.api_key}":
             return _error(401, "Incorrect API key provided", "AuthenticationError")

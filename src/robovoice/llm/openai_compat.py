@@ -99,13 +99,17 @@ class OpenAICompatBackend:
         self.temperature = temperature
         self.include_usage = include_usage
         self.streams_tool_calls = True  # False once the server sent an empty stream for a request with tools
-        headers = {"Accept": "text/event-stream"}
+        self._headers = {"Accept": "text/event-stream"}
         if api_key:
-            headers["Authorization"] = f"Bearer {api_key}"
+            self._headers["Authorization"] = f"Bearer {api_key}"
+        self._transport = transport
+        self._client = self._new_client()
+
+    def _new_client(self) -> httpx.AsyncClient:
         d = self.deadlines
         # httpx read timeout off: first-token/idle/total deadlines are enforced below.
         timeout = httpx.Timeout(connect=d.connect_s, read=None, write=d.connect_s, pool=d.connect_s)
-        self._client = httpx.AsyncClient(headers=headers, timeout=timeout, transport=transport)
+        return httpx.AsyncClient(headers=self._headers, timeout=timeout, transport=self._transport)
 
     def __repr__(self) -> str:
         return f"OpenAICompatBackend({self.base_url!r}, model={self.model!r})"
@@ -149,6 +153,10 @@ class OpenAICompatBackend:
                         "stream tool calls, e.g. llama-cpp-python's chatml-function-calling): asked again "
                         "without streaming, and so from now on", self.name)
             self.streams_tool_calls = False
+            # a fresh connection: llama-cpp-python's server cannot read the next request on the one
+            # whose handler failed (HTTP 400 "error parsing the body", then it drops the connection)
+            stale, self._client = self._client, self._new_client()
+            await stale.aclose()
             again = _Phase("first_token", d.first_token_s, min(time.monotonic() + d.first_token_s, total_at))
             async for event in self._answer(_unstreamed(body), start, again, total_at, names):
                 yield event
