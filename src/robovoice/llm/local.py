@@ -16,6 +16,9 @@
   prefix. `warm_up` evaluates the system prompt + tools once, so the first real
   turn only evaluates the conversation. ``Usage.cached_prompt_tokens`` reports
   how many prompt tokens were reused.
+* Speculation: `prefill` evaluates an expected turn's prompt (and decodes its tool call)
+  inside the end-of-turn silence; a real turn with the same prompt reuses it
+  (`local_speculation`).
 """
 
 from __future__ import annotations
@@ -29,7 +32,6 @@ import threading
 import time
 from collections.abc import AsyncGenerator, AsyncIterator, Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -48,6 +50,8 @@ from robovoice.llm.base import (
 )
 from robovoice.llm.bridge import ThreadStream
 from robovoice.llm.local_head import TOOL_BIAS, HeadDecision, HeadTilt, bias_for, head_token_ids
+from robovoice.llm.local_speculation import Speculation, SpeculativePrefill
+from robovoice.llm.local_turn import Turn, TurnStats
 from robovoice.llm.model_store import INSTALL_HINT as MODEL_INSTALL_HINT
 from robovoice.llm.model_store import default_model_ready, resolve_model_path
 
@@ -75,29 +79,7 @@ def _import_llama() -> Any:
     return llama_cpp
 
 
-@dataclass(slots=True)
-class TurnStats:
-    """Measured on the model thread for the last turn (or warm-up)."""
-
-    prompt_tokens: int = 0
-    cached_prompt_tokens: int = 0
-    prompt_eval_ms: float = 0.0  # llama.cpp's own prompt-evaluation time, all calls of the turn
-    first_event_s: float | None = None  # from job start to the first yielded event
-    total_s: float = 0.0
-    completion_tokens: int = 0
-    # The head decision of the turn: logit of the best call-head token minus that of the best
-    # message-head token, before ``tool_bias`` (None when the turn offered no tools).
-    head_margin: float | None = None
-
-
-@dataclass(slots=True)
-class _Turn:
-    stop: threading.Event
-    start: float = field(default_factory=time.perf_counter)
-    stats: TurnStats = field(default_factory=TurnStats)
-
-
-class LocalLlamaBackend:
+class LocalLlamaBackend(SpeculativePrefill):
     """The embedded llama.cpp model; cheap to construct, loads on `load()` or the first turn."""
 
     accepts_audio = False
@@ -141,6 +123,8 @@ class LocalLlamaBackend:
         self._llama: Any = None
         self._executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix=f"llm-{name}")
         self._pending: asyncio.Future[None] | None = None
+        self._speculation: Speculation | None = None
+        self._streams = 0
         self._grammars: dict[str, Any] = {}
         self._head_ids: dict[tuple[str, ...], tuple[list[int], list[int]]] = {}
 
@@ -185,7 +169,7 @@ class LocalLlamaBackend:
                 )
         return self._grammars[schema]
 
-    def _decide_head(self, turn: _Turn, prompt: str, tools: Sequence[ToolSpec], bias: float) -> HeadDecision:
+    def _decide_head(self, turn: Turn, prompt: str, tools: Sequence[ToolSpec], bias: float) -> HeadDecision:
         llama_cpp = _import_llama()
         key = tuple(t.name for t in tools)
         if key not in self._head_ids:
@@ -211,7 +195,7 @@ class LocalLlamaBackend:
         data = llama_cpp.llama_perf_context(self._llama._ctx.ctx)
         return float(data.t_p_eval_ms), int(data.n_p_eval)
 
-    def _complete(self, turn: _Turn, prompt: str, *, stream: bool, **kwargs: Any) -> Any:
+    def _complete(self, turn: Turn, prompt: str, *, stream: bool, **kwargs: Any) -> Any:
         """One ``create_completion`` call, counting prompt tokens reused from the last evaluation."""
         llama = self._llama
         llama_cpp = _import_llama()
@@ -235,7 +219,7 @@ class LocalLlamaBackend:
             **kwargs,
         )
 
-    def _stream_text(self, turn: _Turn, prompt: str) -> Iterator[LLMEvent]:
+    def _stream_text(self, turn: Turn, prompt: str) -> Iterator[LLMEvent]:
         reason = "stop"
         for chunk in self._complete(turn, prompt, stream=True, max_tokens=self.max_tokens, stop=[fmt.IM_END]):
             choice = chunk["choices"][0]
@@ -246,7 +230,7 @@ class LocalLlamaBackend:
                 reason = str(choice["finish_reason"])
         yield self._finished(turn, reason)
 
-    def _calls(self, turn: _Turn, prompt: str, first: ToolSpec, tools: Sequence[ToolSpec]) -> Iterator[LLMEvent]:
+    def _calls(self, turn: Turn, prompt: str, first: ToolSpec, tools: Sequence[ToolSpec]) -> Iterator[LLMEvent]:
         tool: ToolSpec | None = first
         index = 0
         while tool is not None and index < self.max_calls_per_turn:
@@ -267,12 +251,12 @@ class LocalLlamaBackend:
             tool = fmt.parse_head(head["choices"][0]["text"], tools).tool
         yield self._finished(turn, "tool_calls")
 
-    def _finished(self, turn: _Turn, reason: str) -> Finished:
+    def _finished(self, turn: Turn, reason: str) -> Finished:
         s = turn.stats
         return Finished(reason, Usage(s.prompt_tokens, s.completion_tokens, s.cached_prompt_tokens))
 
     def _turn_events(
-        self, turn: _Turn, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
+        self, turn: Turn, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
     ) -> Iterator[LLMEvent]:
         self._load_blocking()
         prompt = fmt.render_prompt(messages, tools)
@@ -291,7 +275,7 @@ class LocalLlamaBackend:
         """The producer run on the model thread: events, with timings and llama errors wrapped."""
 
         def produce(stop: threading.Event) -> Iterator[LLMEvent]:
-            turn = _Turn(stop)
+            turn = Turn(stop)
             self.last_turn = turn.stats
             p_eval_ms, _ = self._perf() if self._llama is not None else (0.0, 0)
             try:
@@ -343,7 +327,7 @@ class LocalLlamaBackend:
 
     def _warm_up_blocking(self, prefix: str) -> TurnStats:
         self._load_blocking()
-        turn = _Turn(threading.Event())
+        turn = Turn(threading.Event())
         p_eval_ms, _ = self._perf()
         self._complete(turn, prefix, stream=False, max_tokens=1)
         turn.stats.prompt_eval_ms = self._perf()[0] - p_eval_ms
@@ -369,13 +353,14 @@ class LocalLlamaBackend:
 
         def decide() -> HeadDecision:
             self._load_blocking()
-            return self._decide_head(_Turn(threading.Event()), prompt, tools, bias_for(messages, self.tool_bias))
+            return self._decide_head(Turn(threading.Event()), prompt, tools, bias_for(messages, self.tool_bias))
 
         return await asyncio.get_running_loop().run_in_executor(self._executor, decide)
 
     async def reset_cache(self) -> None:
         """Forget the evaluated prefix (the next turn evaluates its whole prompt); for benchmarks."""
         await self._settle()
+        self._speculation = None
         if self._llama is not None:
             await asyncio.get_running_loop().run_in_executor(self._executor, self._llama.reset)
 
@@ -384,8 +369,17 @@ class LocalLlamaBackend:
     ) -> AsyncGenerator[LLMEvent, None]:
         if any(m.has_audio for m in messages):
             raise LLMError(f"{self.name} takes text only; transcribe the audio first")
-        async for event in self._run(self._job(messages, tools)):
-            yield event
+        self._streams += 1
+        try:
+            replay = await self._claim_speculation(messages, tools)
+            if replay is not None:  # decoded in the end-of-turn silence, for exactly this prompt
+                for event in replay:
+                    yield event
+                return
+            async for event in self._run(self._job(messages, tools)):
+                yield event
+        finally:
+            self._streams -= 1
 
     async def aclose(self) -> None:
         await self._settle()
