@@ -6,7 +6,9 @@ end-pointing state machine that turns probabilities into utterances.
   ``silero-vad`` installed ``--no-deps``), run with plain onnxruntime (1 thread), keeping the
   recurrent state and the 64-sample context between frames.
 - `Endpointer`: start/stop hysteresis, pre-roll, minimum speech, end of turn after a
-  configurable silence, maximum utterance length; emits `SpeechStarted` / `SpeechEnded`.
+  configurable silence (or a shorter one the caller allows for an utterance whose words are
+  known to be complete, `allow_early_end`), maximum utterance length; emits `SpeechStarted` /
+  `SpeechEnded`.
 - `SpeechSegmenter`: glue; frames chunks, runs the model, feeds the endpointer.
 """
 
@@ -53,6 +55,7 @@ class SpeechEnded:
     start: float
     end: float
     truncated: bool = False
+    early: bool = False  # ended on the shorter silence of `Endpointer.allow_early_end`
 
     @property
     def speech_duration_s(self) -> float:
@@ -123,7 +126,8 @@ class Endpointer:
     SILENCE -(p >= start)-> PENDING -(min_speech_s of speech)-> SPEECH [SpeechStarted]
     PENDING -(end_silence_s of non-speech)-> SILENCE (a click or a cough: no events)
     SPEECH  -(end_silence_s of non-speech, or max_utterance_s)-> SILENCE [SpeechEnded]
-    Pauses shorter than `end_silence_s` inside a sentence do not end it.
+    Pauses shorter than `end_silence_s` inside a sentence do not end it, unless the caller
+    allowed an early end for that pause (`allow_early_end`).
     """
 
     def __init__(self, config: EndpointerConfig | None = None) -> None:
@@ -143,6 +147,22 @@ class Endpointer:
         self._speech_s = 0.0
         self._silence_s = 0.0
         self._last_speech_end = 0.0
+        self._early: tuple[float, float, float] | None = None
+
+    def allow_early_end(self, onset: float, until: float, silence_s: float) -> None:
+        """End the utterance that began at `onset` after only `silence_s` of silence, provided
+        no speech came after `until` (stream time): the words up to `until` are known to form a
+        complete request. Speech after `until`, or another utterance, voids it. Safe to call
+        from another thread than `update`'s: it sets one attribute, which `update` reads."""
+        self._early = (onset, until, silence_s)
+
+    def _needed_silence(self) -> tuple[float, bool]:
+        """The silence that ends the current utterance, and whether it is an early end's."""
+        early = self._early
+        if (early is not None and abs(early[0] - self._onset) < 1e-6 and self._last_speech_end <= early[1] + 1e-6
+                and early[2] < self.config.end_silence_s):
+            return early[2], True
+        return self.config.end_silence_s, False
 
     def update(self, probability: float, frame: Samples, timestamp: float) -> list[VADEvent]:
         """Feed one frame (its samples and start time) with its speech probability."""
@@ -181,8 +201,9 @@ class Endpointer:
                 self._abandon()
                 return []
         if self._state is _State.SPEECH:
-            if self._silence_s >= cfg.end_silence_s - 1e-9:
-                events.append(self._finish(truncated=False))
+            needed, early = self._needed_silence()
+            if self._silence_s >= needed - 1e-9:
+                events.append(self._finish(truncated=False, early=early))
             elif f.speech and f.end - self._onset >= cfg.max_utterance_s - 1e-9:
                 # (in trailing silence the end of turn comes within end_silence_s anyway)
                 events.append(self._finish(truncated=True))
@@ -207,12 +228,12 @@ class Endpointer:
         for f in frames:
             self._push_pre_roll(f)
 
-    def _finish(self, *, truncated: bool) -> SpeechEnded:
+    def _finish(self, *, truncated: bool, early: bool = False) -> SpeechEnded:
         end = self._last_speech_end if not truncated else self._utt[-1].end
         keep_until = end + self.config.post_roll_s + 1e-9
         frames = [f for f in self._utt if f.start < keep_until]
         audio = AudioChunk(np.concatenate([f.samples for f in frames]), MODEL_FORMAT, frames[0].start)
-        event = SpeechEnded(audio=audio, start=self._onset, end=end, truncated=truncated)
+        event = SpeechEnded(audio=audio, start=self._onset, end=end, truncated=truncated, early=early)
         logger.debug("speech ended: %.2f-%.2f s%s", event.start, event.end, " (truncated)" if truncated else "")
         self.reset()
         return event

@@ -23,7 +23,8 @@ import logging
 import math
 import time
 from collections import deque
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -58,11 +59,15 @@ class HeardSpeechStart:
 class HeardPause:
     """Speech went quiet at `at` after starting at `onset`: the utterance may be over (the
     end of turn is confirmed only after the end-of-turn silence). `audio` is the utterance
-    so far, so speech-to-text can start now, speculatively, inside that silence."""
+    so far, so speech-to-text can start now, speculatively, inside that silence.
+    `end_early(silence_s)`: let this pause end the utterance after only `silence_s` of silence
+    (when the words up to it form a complete request) unless speech resumes; callable from
+    the event loop (`Endpointer.allow_early_end`)."""
 
     onset: float
     at: float
     audio: AudioChunk
+    end_early: Callable[[float], None] = field(default=lambda _silence_s: None, compare=False, repr=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -77,6 +82,7 @@ class HeardUtterance:
     truncated: bool
     playback_share: float
     near_end: bool
+    early: bool = False  # ended on a pause's shorter silence (`HeardPause.end_early`)
 
     @property
     def duration_s(self) -> float:
@@ -285,7 +291,12 @@ class Listener:
         if not frames:
             return None
         audio = AudioChunk(np.concatenate([f.samples for f in frames]), MODEL_FORMAT, frames[0].timestamp)
-        return HeardPause(self._onset, now, audio)
+        onset = self._onset
+
+        def end_early(silence_s: float) -> None:
+            endpointer.allow_early_end(onset, now, silence_s)
+
+        return HeardPause(onset, now, audio, end_early)
 
     def _score_playback(self, ref: np.ndarray, t1: float) -> None:
         """Run the playback through its own wake word detector while anything plays."""
@@ -314,4 +325,4 @@ class Listener:
         share, near = self.meter.judge(ended.start, ended.end)
         if self.external_playback:  # played outside this pipeline: no reference to judge by
             share = 1.0
-        return HeardUtterance(ended.audio, ended.start, ended.end, ended.truncated, share, near)
+        return HeardUtterance(ended.audio, ended.start, ended.end, ended.truncated, share, near, ended.early)

@@ -8,7 +8,9 @@ answers at once) and hands anything slow to a task of the pipeline's TaskGroup (
 - wake word: heard during the robot's own playback -> rejected; while the robot is busy ->
   barge-in (speech dropped, the active turn cancelled); then turn-taking is told;
 - speech starts or pauses: the motion watch is asked to refresh (for a stop without the
-  wake word); at a pause of an utterance that will need it, transcription starts speculatively;
+  wake word); at a pause of an utterance that will need it, transcription starts speculatively,
+  and its transcript may shorten the end-of-turn silence and prefill the model
+  (`speculate.Speculator`);
 - an utterance ends: a command turn (`command.Commands`), a stop check
   (`stopping.StopController`), or ignored with a reason.
 """
@@ -17,12 +19,14 @@ from __future__ import annotations
 
 import logging
 
+from robovoice.voice import speculate
 from robovoice.voice.command import Commands
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import BargedIn, Emit, WakeWordHeard, WakeWordRejected
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
 from robovoice.voice.listener import Heard, HeardPause, HeardSpeechStart, HeardUtterance, HeardWake
 from robovoice.voice.motion import MotionWatch
+from robovoice.voice.speculate import SpeculationConfig, Speculator
 from robovoice.voice.speech import SpeechOutput
 from robovoice.voice.stopping import StopController
 from robovoice.voice.turns import Action, TurnTaking
@@ -49,6 +53,7 @@ class Router:
         floor: Floor,
         stats: PipelineStats,
         emit: Emit,
+        speculation: SpeculationConfig | None = None,
     ) -> None:
         self.config = config
         self.audio_native = audio_native
@@ -61,6 +66,7 @@ class Router:
         self.floor = floor
         self.stats = stats
         self.emit = emit
+        self.speculator = Speculator(speculation or speculate.default_config, commands.assistant, config.wake_phrase)
 
     async def handle(self, heard: Heard, received: float) -> None:
         """What the listener heard in one chunk; `received`: when the chunk arrived."""
@@ -108,9 +114,12 @@ class Router:
         if not addressed and not (self.motion.moving and short):
             return
         floor = self.floor
-        self.stt.speculate(pause.onset, pause.at, trim_to_wake(pause.audio, self.turns.pending_wake),
-                           lambda coro: floor.spawn(coro, "voice-stt-speculative"),
-                           self.commands.hint if addressed else STOP_HINT)
+        transcription = self.stt.speculate(pause.onset, pause.at, trim_to_wake(pause.audio, self.turns.pending_wake),
+                                           lambda coro: floor.spawn(coro, "voice-stt-speculative"),
+                                           self.commands.hint if addressed else STOP_HINT)
+        woken = addressed and self.turns.pending_wake is not None
+        command = addressed and not self.audio_native
+        floor.spawn(self.speculator.follow(pause, transcription, woken=woken, command=command), "voice-speculation")
 
     async def _on_utterance(self, utt: HeardUtterance, received: float, compute_s: float) -> None:
         short = utt.duration_s <= self.config.turns.stop_max_s

@@ -102,10 +102,15 @@ class Transcribing:
         metrics.mark("transcript", max(metrics.start, time.perf_counter()))
         return text
 
-    def speculate(self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory, hint: str = "") -> None:
+    def speculate(
+        self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory, hint: str = ""
+    ) -> Transcription:
+        """Start transcribing the utterance so far (the one before is dropped); its task."""
         self.drop()
         self.speculated += 1
-        self._speculation = _Speculation(onset, at, create_task(self.transcribe(audio, hint)), hint)
+        task = create_task(self.transcribe(audio, hint))
+        self._speculation = _Speculation(onset, at, task, hint)
+        return task
 
     def drop(self) -> None:
         if self._speculation is not None:
