@@ -17,10 +17,12 @@ one `asyncio.TaskGroup` in `run()`:
 - the motion watch (`motion.MotionWatch`: the robot's pose tool asked in the background) and
   the tool watch (the robot's voice roles and speech-to-text hint, rebuilt when its tools change).
 
-Latency origins: each chunk's arrival is noted in a `clock.StreamAnchor`, so a command turn
-can place the user's last word (the utterance's end, in stream time) on the wall clock where
-its stages are timed (`TurnMetrics.speech_end`). A source that plays faster than real time
-says so with a ``speed`` attribute (`SimulatedRoom`'s microphone); others are taken as real time.
+Latency origins: a command turn places the user's last word (the utterance's end, in stream
+time) on the wall clock where its stages are timed (`TurnMetrics.speech_end`). A source that
+knows when it captured each sample says so with a ``capture_time(stream_s)`` method
+(`SimulatedRoom`'s microphone, like a sound card's buffer timestamps); otherwise each chunk's
+arrival is noted in a `clock.StreamAnchor`, with the source's ``speed`` attribute when it plays
+faster than real time (else real time).
 
 Control: a wake word while the robot is busy (speaking or answering) is a barge-in: queued
 speech is dropped, the speaker stopped and the active turn cancelled (an action it started is
@@ -139,9 +141,10 @@ class VoicePipeline:
         self.router = Router(cfg, audio_native=self.audio_native, stt=self.stt, turns=self.turns,
                              speech=self.speech, motion=self.motion, commands=self.commands, stopper=self.stopper,
                              floor=self.floor, stats=self.stats, emit=self._emit)
-        # a source's own pace (stream s per wall s); not part of the AudioSource protocol
+        # a source's own pace and capture clock: optional, not part of the AudioSource protocol
         self.anchor = StreamAnchor(float(getattr(source, "speed", 1.0)))
-        self.commands.wall_time = self.anchor.wall_time
+        captured = getattr(source, "capture_time", None)
+        self.commands.wall_time = captured if callable(captured) else self.anchor.wall_time
         self.roles = VoiceRoles()
         self.commands.hint = command_hint(cfg.wake_phrase, [], cfg.vocabulary)
         self._listed: list[ToolSpec] | None = None

@@ -21,6 +21,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import math
+import time
 from collections import deque
 from collections.abc import AsyncIterator
 from dataclasses import dataclass, field
@@ -116,6 +117,7 @@ class SimulatedRoom:
         self._tick = asyncio.Event()
         self._closed = False
         self._wall0: float | None = None  # the loop time of stream time `start` (paced rooms, once started)
+        self._perf0: float | None = None  # the same moment on `time.perf_counter`, the pipeline's clock
         self.played: list[tuple[float, AudioChunk]] = []  # the robot's speech as it sounded
         self._record = record
         self._recorded: list[AudioChunk] = []
@@ -136,6 +138,14 @@ class SimulatedRoom:
             return self._index
         due = round((asyncio.get_running_loop().time() - self._wall0) * self.speed * RATE)
         return max(self._index, due)
+
+    def capture_time(self, t: float) -> float | None:
+        """The `time.perf_counter` time at which stream time `t` is captured (None while the
+        room has not started, or is unpaced): the room's own clock, as a sound card stamps
+        its buffers."""
+        if self._perf0 is None or math.isinf(self.speed):
+            return None
+        return self._perf0 + (t - self._start) / self.speed
 
     def _at(self, t: float | None) -> int:
         return self._index if t is None else max(self._index, round((t - self._start) * RATE))
@@ -246,6 +256,7 @@ class SimulatedRoom:
     async def _chunks(self) -> AsyncIterator[AudioChunk]:
         loop = asyncio.get_running_loop()
         wall0 = self._wall0 = loop.time()
+        self._perf0 = time.perf_counter()
         produced = 0
         while not self._closed:
             due = wall0 + (produced + 1) * self.chunk_frames / RATE / self.speed
@@ -276,6 +287,10 @@ class RoomMicrophone:
     def speed(self) -> float:
         """Stream seconds per wall second (`voice.clock.StreamAnchor` maps stream time with it)."""
         return self._room.speed
+
+    def capture_time(self, t: float) -> float | None:
+        """When stream time `t` was captured, on `time.perf_counter` (`SimulatedRoom.capture_time`)."""
+        return self._room.capture_time(t)
 
     def __aiter__(self) -> AsyncIterator[AudioChunk]:
         if self._iterated:
