@@ -53,10 +53,14 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     audio.add_argument("--repeats", type=positive_int, default=3)
     audio.set_defaults(run=_audio)
 
-    voice = sub.add_parser("voice", help="end of speech → first audio out, all-local, per stage; "
+    voice = sub.add_parser("voice", help="the user's last word → first audio out, all-local, per stage (also from "
+                                         "the end-of-turn decision), against the naive chain of the same models; "
                                          "or the pipeline's own overhead with instant model fakes")
     voice.add_argument("which", nargs="?", choices=["local", "overhead"], default="local")
-    voice.add_argument("--turns", type=positive_int, help="turns to measure (default 8 local, 30 overhead)")
+    voice.add_argument("--turns", type=positive_int,
+                       help="turns to measure (default: the 22 bench commands once for local, 30 overhead)")
+    voice.add_argument("--no-naive", action="store_true", help="local: skip the naive chain (no ratio)")
+    voice.add_argument("--json", action="store_true", help="(the output is JSON either way)")
     voice.set_defaults(run=_voice)
 
     console = sub.add_parser("console", help="the console page open for minutes: page and server memory, "
@@ -148,11 +152,11 @@ def _audio(args: argparse.Namespace) -> int:
 
 
 def _voice(args: argparse.Namespace) -> int:
-    from robovoice.voice.bench import bench_local, bench_overhead
+    from robovoice.voice.bench import LOCAL_COMMANDS, bench_local, bench_overhead
 
     if args.which == "overhead":
         return _print(asyncio.run(bench_overhead(args.turns or 30)))
-    return _print(asyncio.run(bench_local(args.turns or 8)))
+    return _print(asyncio.run(bench_local(args.turns or len(LOCAL_COMMANDS), naive=not args.no_naive)))
 
 
 def _console(args: argparse.Namespace) -> int:

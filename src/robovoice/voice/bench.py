@@ -1,18 +1,23 @@
 """Benchmarks of the voice pipeline (DESIGN.md §7), figures for docs/performance.md.
 
-- `bench_local`: end of speech -> first audio out with the all-local stack (openWakeWord,
-  Silero, Moonshine, the embedded Qwen2.5-Coder-1.5B, MCP tool calls on the sim robot,
-  Piper), p50/p95 of every stage, from spoken commands synthesised with Piper and played
-  into a `SimulatedRoom` in real time.
+- `bench_local`: the all-local stack (openWakeWord, Silero, Moonshine, the embedded
+  Qwen2.5-Coder-1.5B, MCP tool calls on the sim robot, Piper) hearing 22 spoken commands
+  (synthesised with Piper, played into a `SimulatedRoom` in real time). Every stage is given
+  from two origins: the user's last word (the VAD's last voiced frame, issue 12:
+  ``speech_end_to_first_audio``) and the end-of-turn decision, which comes after the
+  end-of-turn silence. Then the *naive chain* of the same models in the same process, for
+  comparison: speech-to-text of the whole clip once the full end-of-turn silence has passed,
+  the assistant's whole turn, speech synthesis of the whole reply (no streaming, no
+  speculation), and the ratio of the two.
 - `bench_overhead`: the pipeline's own cost per turn with every model replaced by an
   instant fake (so end of speech -> first audio *is* the overhead: framing, queues, tasks,
   executors, the assistant loop, the speech queue), plus the front end's CPU per second of
   audio.
 
     python -m robovoice.voice.bench overhead --turns 30
-    python -m robovoice.voice.bench local --turns 12 --json
+    python -m robovoice.voice.bench local --turns 22
 
-(Equivalent to ``robovoice bench voice`` once that sub-command is registered.)
+(The same as ``robovoice bench voice overhead|local --json``.)
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from robovoice.assistant.loop import Assistant
 from robovoice.assistant.metrics import percentile
 from robovoice.assistant.robot_tools import ProgressCallback, RobotTools, ToolOutcome
 from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer, ToneWakeDetector
@@ -38,24 +44,40 @@ from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, fl
 from robovoice.audio.format import silence as make_silence
 from robovoice.audio.stt import Transcript
 from robovoice.llm.base import ChatMessage, Finished, LLMEvent, TextDelta, ToolSpec
-from robovoice.voice.events import PipelineEvent, VoiceTurnFinished
+from robovoice.voice.events import PipelineEvent, VoiceTurnFinished, VoiceTurnStarted
 from robovoice.voice.models import VoiceModels
 from robovoice.voice.pipeline import VoicePipeline
 from robovoice.voice.room import SimulatedRoom
+from robovoice.voice.utterance import strip_wake_words
 
 log = logging.getLogger(__name__)
 
 STAGES = ("endpoint", "transcript", "first_token", "tool_call", "tool_result", "first_sentence", "first_audio")
 
-#: Commands for the all-local benchmark: tool calls, a question, small talk.
+#: Commands for the all-local benchmark, in an order the robot can follow (a call before its
+#: hang-up): drives, the projector, calls, battery and pose questions, small talk.
 LOCAL_COMMANDS = (
     "Hey Jarvis, turn on the projector.",
     "Hey Jarvis, how much battery do you have left?",
-    "Hey Jarvis, switch the projector off.",
-    "Hey Jarvis, where are you right now?",
     "Hey Jarvis, go to the kitchen.",
+    "Hey Jarvis, good morning!",
+    "Hey Jarvis, where are you right now?",
+    "Hey Jarvis, switch the projector off.",
     "Hey Jarvis, call Anna.",
     "Hey Jarvis, end the call.",
+    "Hey Jarvis, drive to the living room.",
+    "Hey Jarvis, what can you do?",
+    "Hey Jarvis, is the projector on?",
+    "Hey Jarvis, go to the bedroom, please.",
+    "Hey Jarvis, are you charging at the moment?",
+    "Hey Jarvis, call my son.",
+    "Hey Jarvis, hang up, please.",
+    "Hey Jarvis, thank you.",
+    "Hey Jarvis, come to the front door.",
+    "Hey Jarvis, which room are you in?",
+    "Hey Jarvis, who can you call?",
+    "Hey Jarvis, go to the bathroom.",
+    "Hey Jarvis, how are you today?",
     "Hey Jarvis, go back to your charging dock.",
 )
 
@@ -178,9 +200,49 @@ async def bench_overhead(turns: int = 30, *, speed: float = 4.0) -> dict[str, An
     }
 
 
-async def bench_local(turns: int = 8, *, models: VoiceModels | None = None, sim_speed: float = 10.0,
-                      commands: Sequence[str] = LOCAL_COMMANDS) -> dict[str, Any]:
-    """The all-local stack, from spoken commands to first audio out, per stage."""
+def _figures(values: Sequence[float]) -> dict[str, float] | None:
+    if not values:
+        return None
+    return {"p50": round(percentile(values, 50), 1), "p95": round(percentile(values, 95), 1),
+            "max": round(max(values), 1), "n": len(values)}
+
+
+def _table(turns: Sequence[dict[str, float]]) -> dict[str, dict[str, float]]:
+    return {k: {"p50": v.p50, "p95": v.p95, "n": v.n} for k, v in stage_table(turns).items()}
+
+
+async def naive_chain(models: VoiceModels, assistant: Assistant, clips: Sequence[AudioChunk], *,
+                      end_silence_s: float, wake_phrase: str, hint: str) -> list[dict[str, float]]:
+    """The plain chain of the same models, one clip at a time, in ms from the last word:
+    the full end-of-turn silence (a wait, so its configured length is added, not slept),
+    speech-to-text of the whole clip, the assistant's whole turn, speech synthesis of the
+    whole reply. Nothing overlaps, nothing is streamed or speculated."""
+    assert models.stt is not None
+    turns: list[dict[str, float]] = []
+    for clip in clips:
+        assistant.reset()
+        started = time.perf_counter()
+        heard = await asyncio.to_thread(models.stt.transcribe, clip, hint)
+        transcribed = time.perf_counter()
+        result = await assistant.turn(strip_wake_words(heard.text, wake_phrase))
+        answered = time.perf_counter()
+        await asyncio.to_thread(models.tts.synthesize, result.reply or "Okay.")
+        spoken = time.perf_counter()
+        wait_ms = end_silence_s * 1000.0
+        log.info("naive chain %r: first audio %.0f ms from the last word", heard.text,
+                 wait_ms + (spoken - started) * 1000)
+        turns.append({"endpoint": round(wait_ms, 1),
+                      "transcript": round(wait_ms + (transcribed - started) * 1000, 1),
+                      "reply": round(wait_ms + (answered - started) * 1000, 1),
+                      "first_audio": round(wait_ms + (spoken - started) * 1000, 1)})
+    return turns
+
+
+async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels | None = None,
+                      sim_speed: float = 10.0, commands: Sequence[str] = LOCAL_COMMANDS,
+                      naive: bool = True) -> dict[str, Any]:
+    """The all-local stack, from spoken commands to first audio out, per stage, from the last
+    word and from the end-of-turn decision; then the naive chain on the same clips."""
     from robovoice.assistant.connect import connect_robot
     from robovoice.assistant.prompt import SYSTEM_PROMPT
     from robovoice.config import RobotConfig
@@ -193,17 +255,25 @@ async def bench_local(turns: int = 8, *, models: VoiceModels | None = None, sim_
     audio = {text: concat([convert(models.tts.synthesize(text), MODEL_FORMAT), make_silence(MODEL_FORMAT, 0.1)])
              for text in set(said)}
     finished: list[VoiceTurnFinished] = []
+    heard: dict[int, str] = {}  # turn -> its transcript
 
     def observe(event: PipelineEvent) -> None:
         if isinstance(event, VoiceTurnFinished) and not event.cancelled:
             finished.append(event)
+            spoken = event.result.metrics.from_speech_end() if event.result is not None else {}
+            log.info("turn %d (%r): first audio %s ms from the last word", event.turn, heard.get(event.turn),
+                     spoken.get("first_audio"))
+        elif isinstance(event, VoiceTurnStarted):
+            heard[event.turn] = event.text
 
     local = LocalLlamaBackend()
+    robot = RobotConfig(address=f"sim://?speed={sim_speed:g}")
+    naive_turns: list[dict[str, float]] = []
     try:
-        async with connect_robot(RobotConfig(address=f"sim://?speed={sim_speed:g}")) as link:
+        async with connect_robot(robot) as link:
             await local.warm_up(SYSTEM_PROMPT, await link.tools.specs())
             sim = link.sim
-            room = SimulatedRoom()
+            room = SimulatedRoom()  # real time: stream time and the wall clock advance together
             pipeline = VoicePipeline(models, local, link.tools, source=room.mic, sink=room.speaker,
                                      reference=room.reference, observer=observe,
                                      moving=(lambda: sim.state.moving) if sim is not None else None)
@@ -213,20 +283,41 @@ async def bench_local(turns: int = 8, *, models: VoiceModels | None = None, sim_
                 group.create_task(_run_turns(pipeline, room, [audio[t] for t in said], finished, reset=True,
                                              timeout=180.0))
             wall = time.perf_counter() - started
+            cfg, hint = pipeline.config, pipeline.hint
+        if naive:
+            async with connect_robot(robot) as link:  # a fresh robot, in the state the pipeline's began in
+                naive_turns = await naive_chain(models, Assistant(local, link.tools), [audio[t] for t in said],
+                                                end_silence_s=cfg.endpointer.end_silence_s,
+                                                wake_phrase=cfg.wake_phrase, hint=hint)
     finally:
         await local.aclose()
-    marks = [dict(f.latency_ms) for f in finished]
-    per_turn = [{"said": f.result.reply if f.result else "", **dict(f.latency_ms)} for f in finished]
-    return {
-        "what": "end of speech (end-of-turn detected) -> each stage, all-local stack, ms",
+    from_decision = [dict(f.latency_ms) for f in finished]
+    from_last_word = [f.result.metrics.from_speech_end() if f.result else {} for f in finished]
+    first = [m["first_audio"] for m in from_last_word if "first_audio" in m]
+    naive_first = [m["first_audio"] for m in naive_turns]
+    out: dict[str, Any] = {
+        "what": f"all-local stack, {len(said)} spoken commands; ms from the user's last word (the VAD's last voiced "
+                "frame) and from the end-of-turn decision; naive chain of the same models for comparison",
+        "commands": len(said),
         "turns": len(finished),
-        "stages": {k: {"p50": v.p50, "p95": v.p95, "n": v.n} for k, v in stage_table(marks).items()},
-        "per_turn": per_turn,
+        "speech_end_to_first_audio_ms": _figures(first),
+        "stages_from_speech_end": _table(from_last_word),
+        "stages_from_end_of_turn_decision": _table(from_decision),
+        "per_turn": [{"heard": heard.get(f.turn, ""), "reply": f.result.reply if f.result else "",
+                      "from_speech_end": spoken, "from_end_of_turn_decision": decided}
+                     for f, spoken, decided in zip(finished, from_last_word, from_decision, strict=True)],
         "wall_s": round(wall, 1),
         "frontend_ms_per_audio_s": round(1000 * pipeline.stats.frontend_s / max(pipeline.stats.audio_s, 1e-9), 2),
         "frontend_cpu_percent": round(100 * pipeline.stats.frontend_cpu_s / max(pipeline.stats.audio_s, 1e-9), 2),
         "machine": machine(),
     }
+    if naive:
+        naive_fig = _figures(naive_first)
+        out["naive_chain"] = {"speech_end_to_first_audio_ms": naive_fig, "stages_from_speech_end": _table(naive_turns)}
+        pipe_fig = out["speech_end_to_first_audio_ms"]
+        if naive_fig and pipe_fig:
+            out["naive_over_pipeline"] = {q: round(naive_fig[q] / pipe_fig[q], 2) for q in ("p50", "p95")}
+    return out
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -239,7 +330,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.which == "overhead":
         result = asyncio.run(bench_overhead(args.turns or 30))
     else:
-        result = asyncio.run(bench_local(args.turns or 8))
+        result = asyncio.run(bench_local(args.turns or len(LOCAL_COMMANDS)))
     print(json.dumps(result, indent=1))  # the module's command-line entry point prints its result
     return 0
 
