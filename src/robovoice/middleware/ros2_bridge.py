@@ -73,6 +73,17 @@ def write_profile(lease_s: float) -> Path:
     return path
 
 
+def _keep_no_executor(executor: object) -> None:
+    return None
+
+
+def _now(future: Future[Any]) -> None:
+    """Make `future`'s done callbacks run where its result is set, not as a later executor task:
+    executors attach themselves with `_set_executor` just before setting the result, and a
+    future with no executor calls its callbacks at once (rclpy.task.Future)."""
+    future._set_executor = _keep_no_executor  # type: ignore[method-assign]  # see above
+
+
 class RosBridge:
     """One rclpy context + node + executor thread, and the way back into the event loop."""
 
@@ -128,8 +139,15 @@ class RosBridge:
             self._loop.call_soon_threadsafe(fn, *args)
 
     def wait(self, future: Future[Any]) -> asyncio.Future[Any]:
-        """An asyncio future settled (on the loop) when the rclpy `future` is done."""
+        """An asyncio future settled (on the loop) when the rclpy `future` is done.
+
+        rclpy runs a future's done callbacks as a new executor task, one more turn of the
+        executor (a wait set rebuilt and waited on) before the answer is handed over; the hand-
+        over is one thread-safe `post`, so it is made at once, on the executor thread, when the
+        result is set (`_now`). Should the result be set first, the callback runs as rclpy's task:
+        the same, one turn later."""
         waiter: asyncio.Future[Any] = self._loop.create_future()
+        _now(future)
 
         def settle(done: Future[Any]) -> None:
             if waiter.done():

@@ -99,8 +99,7 @@ class Ros2Calls:
                 raise CallTimeoutError(
                     f"{binding.ros_name} did not answer within the time limit ({what})",
                     hint="the robot is busy or stuck; tell the user", details={"node": node, "rpc": binding.key})
-            done, _ = await asyncio.wait({waiter}, timeout=min(WATCH_S, left))
-            if done:
+            if await _settled(waiter, min(WATCH_S, left)):
                 return waiter.result()
             if not up(binding.ros_name):
                 raise NodeUnavailableError(
@@ -243,6 +242,27 @@ class Ros2Calls:
             log.info("no answer to the cancel request within %g s", CANCEL_WAIT_S)
         except Exception as exc:  # the goal ended meanwhile, the server is gone...
             log.info("cancelling the goal failed: %s", exc)
+
+
+async def _settled(waiter: asyncio.Future[Any], timeout: float) -> bool:
+    """Whether `waiter` is done within `timeout` s (`asyncio.wait` for one future, without its
+    task and set machinery: this is on every call's path)."""
+    if not waiter.done():
+        loop = asyncio.get_running_loop()
+        wake = loop.create_future()
+
+        def ring(_: object = None) -> None:
+            if not wake.done():
+                wake.set_result(None)
+
+        timer = loop.call_later(timeout, ring)
+        waiter.add_done_callback(ring)
+        try:
+            await wake
+        finally:
+            timer.cancel()
+            waiter.remove_done_callback(ring)
+    return waiter.done()
 
 
 @dataclass(frozen=True, slots=True)
