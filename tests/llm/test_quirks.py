@@ -38,7 +38,7 @@ from .conftest import NAVIGATE_TO, SET_PROJECTOR, STOP_ROBOT
 
 BATTERY = ToolSpec("get_battery_state", "The battery level and whether it is charging.")
 TOOLS = [NAVIGATE_TO, STOP_ROBOT, SET_PROJECTOR, BATTERY]
-CALM = Deadlines(connect_s=2.0, first_token_s=5.0, idle_s=5.0, total_s=20.0)  # a loaded machine is slow
+CALM = Deadlines(connect_s=3.0, first_token_s=10.0, idle_s=10.0, total_s=30.0)  # a loaded machine is slow
 USER = [ChatMessage("system", "You are a home robot."), ChatMessage("user", "Go to the kitchen")]
 DRIVE = ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),), arg_chunk_chars=3)
 SYNTAX = ("<tool_call", "</tool_call", "functions.", '"name"', '"arguments"', "[TOOL_CALLS]")
@@ -171,20 +171,20 @@ async def test_text_that_merely_mentions_functions_is_spoken_whole() -> None:
 
 
 async def test_plain_text_is_not_held_back_to_the_end() -> None:
-    """Only what could start a call is held: the first words of an answer stream at once."""
-    reply = TextReply("Hello there, I am the robot.", chunk_chars=4, pacing=Pacing(stall_after_chunks=3, stall_s=1.0))
+    """Only what could start a call is held: the first words of an answer stream at once, not
+    after the server's 2 s stall (measured as the gap between deltas, robust to a loaded machine)."""
+    reply = TextReply("Hello there, I am the robot.", chunk_chars=4, pacing=Pacing(stall_after_chunks=3, stall_s=2.0))
     async with FakeOpenAIServer([reply], quirks=Quirks(tool_calls_as="hermes")) as srv:
         llm = OpenAICompatBackend(srv.base_url, srv.model, deadlines=CALM)
-        start = time.monotonic()
-        stream = llm.stream(USER, TOOLS)
-        first = await anext(stream)
-        first_at = time.monotonic() - start
-        rest = await collect(stream)
-        total = time.monotonic() - start
+        arrivals: list[tuple[float, LLMEvent]] = []
+        async for event in llm.stream(USER, TOOLS):
+            arrivals.append((time.monotonic(), event))
         await llm.aclose()
-    assert isinstance(first, TextDelta) and first.text == "Hell"
-    assert first_at < total - 0.8  # before the 1 s stall, not after it
-    assert text_of([first, *rest]) == "Hello there, I am the robot."
+    deltas = [(t, e.text) for t, e in arrivals if isinstance(e, TextDelta)]
+    assert deltas[0][1] == "Hell"
+    after_stall = next(t for t, text in deltas if "I a" in text)
+    assert after_stall - deltas[0][0] >= 1.5  # the first words came before the stall, not with the rest
+    assert "".join(text for _, text in deltas) == "Hello there, I am the robot."
 
 
 # --- a server that cannot stream tool calls (llama-cpp-python 0.3.36, chatml-function-calling) -----
@@ -253,11 +253,9 @@ async def test_keep_alives_are_not_a_first_token() -> None:
     """A server that pings every 0.1 s while it reads the prompt still misses its first-token deadline."""
     slow = TextReply("Hello.", pacing=Pacing(first_token_delay_s=3.0))
     deadlines = Deadlines(connect_s=2.0, first_token_s=0.8, idle_s=5.0, total_s=20.0)
-    start = time.monotonic()
-    with pytest.raises(DeadlineExceededError) as info:
+    with pytest.raises(DeadlineExceededError) as info:  # not the text 3 s later: the pings did not count
         await run(Quirks(keep_alives=True), slow, deadlines=deadlines)
     assert info.value.deadline == "first_token"
-    assert time.monotonic() - start < 2.5
 
 
 # --- 429 / 503 with Retry-After -------------------------------------------------------------------
@@ -284,7 +282,7 @@ async def test_busy_longer_than_the_first_token_deadline_is_a_structured_error_a
     start = time.monotonic()
     with pytest.raises(RetryAfterError) as info:
         await run(Quirks(busy_status=429, busy_retry_after="30"), TextReply("Hello."))
-    assert time.monotonic() - start < 3.0  # not 30 s: failover can move on
+    assert time.monotonic() - start < 10.0  # not 30 s: failover can move on
     err = info.value
     assert isinstance(err, LLMHTTPError) and err.status_code == 429 and err.retry_after == 30.0
     assert err.server_message == "server busy, try again later" and "retry after 30 s" in str(err)
@@ -311,5 +309,5 @@ async def test_a_busy_backend_that_asks_for_long_is_failed_over_at_once() -> Non
         events = await collect(chain.stream(USER, TOOLS))
         took = time.monotonic() - start
         await chain.aclose()
-    assert text_of(events) == "I am the spare." and took < 3.0
+    assert text_of(events) == "I am the spare." and took < 15.0  # not the 60 s the busy one asked for
     assert len(busy.requests) == 1
