@@ -43,6 +43,8 @@ LEAKS = [
     "<|python_tag|>navigate_to(target='kitchen')",
     "<function=navigate_to>{\"target\": \"kitchen\"}</function>",
     "<tool_response>ok</tool_response>",
+    "<think>\nThe user wants the kitchen.",
+    "I should call navigate_to.</think>",
 ]
 
 SPEAKABLE = [

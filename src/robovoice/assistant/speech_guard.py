@@ -16,6 +16,7 @@ _TOOL_SYNTAX = re.compile(
     r"|\[/?TOOL_CALLS\]|\[/?TOOL_RESULTS\]|\[/?AVAILABLE_TOOLS\]"
     r"|<\|[A-Za-z_][\w-]*\|>"  # chat-template control tokens: <|im_start|>, <|python_tag|>, <|eot_id|>
     r"|<(?:start|end)_of_turn>"
+    r"|</?think>"  # a reasoning model's thinking, passed through by a server without a reasoning parser
     r"|\bfunctions\.[A-Za-z_]\w*"  # chatml-function-calling's call head (not "functions." ending a sentence)
     r'|\{\s*"(?:name|function)"\s*:\s*"[^"]*"\s*,\s*"(?:arguments|parameters)"'  # a call as a JSON object
     r'|"(?:arguments|parameters)"\s*:\s*\{[^{}]*\}\s*,\s*"name"\s*:'  # ... with its keys the other way round
