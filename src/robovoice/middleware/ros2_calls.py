@@ -15,7 +15,7 @@ import json
 import logging
 import math
 import time
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -38,6 +38,7 @@ QUEUE_DEPTH = 100
 WATCH_S = 0.2
 """While waiting for a response, how often the server's presence in the graph is checked."""
 CANCEL_WAIT_S = 2.0
+MATCH_POLL_S = 0.005
 
 
 class Ros2Calls:
@@ -81,10 +82,12 @@ class Ros2Calls:
     async def _service_call(self, client: Client[Any, Any], request: Any, node: str, target: ToolBinding | _Plain,
                             timeout: float, what: str) -> Any:
         """One service call, bounded; a call given up on leaves no pending request behind."""
+        deadline = time.monotonic() + timeout
+        await _matched(client.service_is_ready, lambda: self._presence.service_up(target.ros_name), deadline)
         future = client.call_async(request)
         waiter = self._bridge.wait(future)
         try:
-            return await self._await(waiter, self._presence.service_up, node, target, time.monotonic() + timeout, what)
+            return await self._await(waiter, self._presence.service_up, node, target, deadline, what)
         except BaseException:
             waiter.cancel()
             client.remove_pending_request(future)
@@ -128,6 +131,7 @@ class Ros2Calls:
             item = Feedback(fb.progress, total, fb.message, json.loads(fb.data or "{}"))
             self._bridge.post(_offer, feedback, item)
 
+        await _matched(client.server_is_ready, lambda: self._presence.action_up(target.ros_name), deadline)
         send = client.send_goal_async(run_type.Goal(arguments=json.dumps(dict(args), default=str)),
                                       feedback_callback=arrived)
         handle = await self._goal(send, node, target, deadline)
@@ -187,6 +191,7 @@ class Ros2Calls:
             data = to_json(message.feedback)
             self._bridge.post(_offer, feedback, data)
 
+        await _matched(client.server_is_ready, lambda: self._presence.action_up(binding.ros_name), deadline)
         send = client.send_goal_async(goal, feedback_callback=arrived)
         handle = await self._goal(send, node, binding, deadline)
         if not handle.accepted:
@@ -242,6 +247,15 @@ class Ros2Calls:
             log.info("no answer to the cancel request within %g s", CANCEL_WAIT_S)
         except Exception as exc:  # the goal ended meanwhile, the server is gone...
             log.info("cancelling the goal failed: %s", exc)
+
+
+async def _matched(ready: Callable[[], bool], up: Callable[[], bool], deadline: float) -> None:
+    """Until a client is matched with its server, the server leaves the graph, or `deadline`
+    (the wait that follows says which): a request sent before the match is lost, not queued
+    (DDS keeps nothing for a reader that joins later), so the first call on a new client could
+    time out. Once matched, this is one check of microseconds."""
+    while not ready() and up() and time.monotonic() < deadline:
+        await asyncio.sleep(MATCH_POLL_S)
 
 
 async def _settled(waiter: asyncio.Future[Any], timeout: float) -> bool:
