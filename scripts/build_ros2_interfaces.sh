@@ -4,7 +4,8 @@
 #   interfaces/robovoice_msgs                  JSON calls and actions of robovoice nodes hosted on
 #                                              ROS 2 (robovoice sim --middleware ros2://…)
 #   examples/ros2_robot/interfaces/nav2_msgs   only NavigateToPose, with Nav2's fields and type name,
-#                                              for the example robot (a robot with Nav2 has the real one)
+#                                              for the example robot and the sim's /navigate_to_pose
+#                                              (a robot with Nav2 has the real one)
 # Each is skipped when it is importable already.
 #   scripts/build_ros2_interfaces.sh [VENV]        (default .venv)
 # Needs cmake, a C/C++ compiler and the Python headers (Debian: cmake g++ python3-dev).

@@ -75,6 +75,7 @@ async def test_the_sim_robot_on_ros2_serves_the_same_tools(ros: RosWorld) -> Non
         # a plain rclpy view: the navigation is an action server, the battery a topic
         actions = dict(served.middleware.graph_actions())
         assert "robovoice_msgs/action/Run" in actions["/robovoice/navigation/drive_to"]
+        assert "nav2_msgs/action/NavigateToPose" in actions["/navigate_to_pose"]  # test_ros2_sim_standard drives it
 
         # and a plain rclpy process sees the battery as sensor_msgs/BatteryState (a standard mirror)
         plain = ros.spawn([sys.executable, "-c", _PLAIN_BATTERY])
