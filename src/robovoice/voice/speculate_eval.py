@@ -3,6 +3,7 @@ compared with the full silence, and how much silence it saves.
 
     python -m robovoice.voice.speculate_eval tests/data/eval/audio.jsonl [--early-ms 300] [--json]
     python -m robovoice.voice.speculate_eval --prefill-ab --turns 8   # prefill on/off, `bench_local`
+    python -m robovoice.voice.speculate_eval --head-start-ms 200 --turns 8   # the model alone
 
 Each clip goes through Silero VAD and the `Endpointer` the way the listener feeds them (80 ms
 chunks; a pause is the first quiet chunk of an utterance), twice:
@@ -195,16 +196,76 @@ async def prefill_ab(turns: int) -> dict[str, object]:
     return out
 
 
+async def head_start(turns: int, head_start_s: float) -> dict[str, object]:
+    """The embedded model alone, with the assistant's prompt and the sim robot's tools: from the
+    start of a turn (= the end-of-turn decision, transcript in hand) to its first token, without
+    a prefill and with one started `head_start_s` earlier (the silence left after the speculative
+    transcript; negative: the prefill is let finish first, the best case). Each command runs
+    both ways, alternating which goes first, each from the same cache (system prompt and tools
+    evaluated, as for a fresh conversation). Deadlines are patient: a loaded machine measures,
+    it does not fall back."""
+    from robovoice.assistant.connect import connect_robot
+    from robovoice.assistant.loop import Assistant
+    from robovoice.assistant.metrics import TurnMetrics
+    from robovoice.assistant.prompt import SYSTEM_PROMPT
+    from robovoice.config import RobotConfig
+    from robovoice.llm.base import Deadlines
+    from robovoice.llm.local import LocalLlamaBackend
+    from robovoice.voice.bench import LOCAL_COMMANDS
+
+    local = LocalLlamaBackend(deadlines=Deadlines(connect_s=0.0, first_token_s=600, idle_s=300, total_s=1200))
+    first_token: dict[str, list[float]] = {"without": [], "with": []}
+    replayed = 0
+    try:
+        async with connect_robot(RobotConfig(address="sim://?speed=50")) as link:
+            specs = await link.tools.specs()
+            assistant = Assistant(local, link.tools)
+            for i in range(turns):
+                text = strip_wake_words(LOCAL_COMMANDS[i % len(LOCAL_COMMANDS)])
+                for mode in ("with", "without") if i % 2 else ("without", "with"):
+                    assistant.reset()
+                    await local.warm_up(SYSTEM_PROMPT, specs)
+                    guess = None
+                    if mode == "with":
+                        messages, tools = await assistant.first_request(text)
+                        guess = asyncio.create_task(local.prefill(messages, tools))
+                        if head_start_s < 0:
+                            await guess
+                        else:
+                            await asyncio.sleep(head_start_s)
+                    metrics = TurnMetrics()
+                    await assistant.turn(text, metrics=metrics)
+                    if guess is not None:
+                        done = await guess
+                        replayed += bool(done is not None and done.decoded_call)
+                    first_token[mode].append(metrics.marks.get("first_token", float("nan")))
+    finally:
+        await local.aclose()
+
+    def p(xs: list[float], q: float) -> float:
+        return round(float(np.percentile(xs, q)), 1)
+
+    return {"turns": turns, "head_start_ms": head_start_s * 1000, "calls_decoded_ahead": replayed,
+            **{f"first_token_ms_{m}": {"p50": p(v, 50), "p95": p(v, 95), "each": [round(x) for x in v]}
+               for m, v in first_token.items()}}
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m robovoice.voice.speculate_eval",
                                      description="the shorter end-of-turn silence on recorded clips")
     parser.add_argument("cases", type=Path, nargs="*", help="audio case files (JSON lines with an 'audio' path)")
     parser.add_argument("--prefill-ab", action="store_true", help="the all-local bench with the prefill off, then on")
-    parser.add_argument("--turns", type=int, default=8, help="commands per --prefill-ab run (default 8)")
+    parser.add_argument("--head-start-ms", type=float, default=None,
+                        help="the model alone: first token without a prefill and with one started this much earlier "
+                             "(-1: with one that has finished)")
+    parser.add_argument("--turns", type=int, default=8, help="commands per --prefill-ab/--head-start-ms run")
     parser.add_argument("--early-ms", type=float, default=300.0, help="the shorter silence (default 300)")
     parser.add_argument("--full-ms", type=float, default=500.0, help="the full end-of-turn silence (default 500)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     args = parser.parse_args(argv)
+    if args.head_start_ms is not None:
+        print(json.dumps(asyncio.run(head_start(args.turns, args.head_start_ms / 1000))))
+        return 0
     if args.prefill_ab:
         print(json.dumps(asyncio.run(prefill_ab(args.turns)), indent=1))
         return 0
