@@ -4,9 +4,11 @@ into hearing, scores low; silence has no words."""
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk
 from robovoice.audio.stt import WhisperTranscriber
@@ -17,6 +19,12 @@ from robovoice.voice.utterance import strip_wake_words
 from robovoice.voice.vocabulary import command_hint
 
 DATA = Path(__file__).resolve().parents[1] / "data"
+
+
+@pytest.fixture(scope="module")
+def whisper() -> Iterator[WhisperTranscriber]:
+    """Whisper with the word-scoring pass on (the shared fixture has it off, the default)."""
+    yield WhisperTranscriber(word_scores=True)
 
 
 def sim_hint() -> str:
@@ -60,3 +68,10 @@ def test_silence_has_no_words(whisper: WhisperTranscriber) -> None:
     heard = whisper.transcribe(quiet)
     assert heard.confidence is not None
     assert heard.text == "" and heard.confidence.words == ()
+
+
+def test_word_scores_are_off_by_default() -> None:
+    plain = WhisperTranscriber(warm_up=False)
+    heard = plain.transcribe(read_wav(DATA / "audio" / "wake_piper_projector.wav"))
+    assert heard.confidence is not None and heard.confidence.words == ()
+    assert heard.confidence.avg_logprob > -0.4 and heard.text

