@@ -6,11 +6,13 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.metrics import TurnMetrics
-from robovoice.audio.format import MODEL_FORMAT, silence
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, as_int16, silence
+from robovoice.audio.vad import SileroVAD, SpeechEnded, SpeechSegmenter
 from robovoice.audio.wav import write_wav
 from robovoice.config import RobotConfig
 from robovoice.eval.cases import Case
@@ -20,9 +22,10 @@ from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.voice.clock import StreamAnchor
 from robovoice.voice.evaluation import open_clip_runner
 from robovoice.voice.events import VoiceTurnFinished, VoiceTurnStarted
+from robovoice.voice.lastword import last_word_end
 from robovoice.voice.models import VoiceModels
 
-from .voice_kit import SettableTranscriber, join, voice_session, wake_command
+from .voice_kit import SettableTranscriber, clip, join, voice_session, wake_command
 
 
 def test_the_anchor_takes_the_least_delayed_chunk() -> None:
@@ -81,7 +84,10 @@ async def test_a_command_turn_knows_when_the_user_stopped_speaking(
     wait = spoken["endpoint"] - done.latency_ms["endpoint"]
     for stage in ("transcript", "first_sentence", "first_audio"):
         assert spoken[stage] == pytest.approx(done.latency_ms[stage] + wait, abs=0.2), stage
-    assert speech.end == pytest.approx(s.room.played[0][0] - spoken["first_audio"] / 1000, abs=0.1)
+    # the room's own record: the robot's first sound, back by the latency, is where the input ended
+    t0, played = s.room.played[0]
+    first_sound = t0 + float(np.flatnonzero(as_int16(played.samples))[0]) / MODEL_FORMAT.rate
+    assert first_sound - spoken["first_audio"] / 1000 == pytest.approx(speech.end, abs=0.04)
 
 
 @pytest.mark.timeout(90)
@@ -106,3 +112,34 @@ async def test_eval_reports_audio_cases_from_the_last_word(
                                                     "p95": from_last_word["first_audio"], "n": 1}
     assert summary["stages_from_speech_end"]["first_audio"]["n"] == 1
     assert summary["stages"]["first_sentence"]["n"] == 2, "the old view keeps every case"
+
+
+def _vad_utterances(audio: AudioChunk) -> list[SpeechEnded]:
+    segmenter = SpeechSegmenter(SileroVAD())
+    padded = join(audio, silence(MODEL_FORMAT, 1.0))
+    ended: list[SpeechEnded] = []
+    for i in range(0, padded.num_frames - 1279, 1280):
+        chunk = AudioChunk(padded.samples[i : i + 1280], MODEL_FORMAT, i / MODEL_FORMAT.rate)
+        ended += [e for e in segmenter.feed(chunk) if isinstance(e, SpeechEnded)]
+    return ended
+
+
+def _audible_end(audio: AudioChunk) -> float:
+    return float(np.flatnonzero(np.abs(as_int16(audio.samples)) > 328)[-1]) / MODEL_FORMAT.rate  # -40 dBFS
+
+
+@pytest.mark.parametrize("name", ["audio/wake_piper_projector", "audio/cmd_piper_kitchen", "eval/wake-places-1"])
+def test_the_last_word_ends_where_the_sound_does_not_where_silero_lets_go(name: str) -> None:
+    audio = clip(name)
+    [utt] = _vad_utterances(audio)
+    truth = _audible_end(audio)
+    assert utt.end - truth > 0.05, "Silero's last voiced frame ends well after the voice"
+    assert abs(last_word_end(utt.audio, utt.end) - truth) <= 0.03
+
+
+def test_in_noise_the_vads_end_is_kept() -> None:
+    audio = clip("audio/wake_piper_kitchen_pink20")
+    [utt] = _vad_utterances(audio)
+    assert last_word_end(utt.audio, utt.end) == utt.end
+    quiet = silence(MODEL_FORMAT, 0.5, timestamp=3.0)
+    assert last_word_end(quiet, 3.2) == 3.2, "nothing voiced: the VAD's end"

@@ -3,9 +3,10 @@
     robovoice demo [--output-dir DIR]                     # everything embedded, a scripted conversation
     robovoice assist --robot sim --mic                     # talk to the sim robot through the microphone
     robovoice assist --server http://robot:8765/mcp --input a.wav b.wav --output-dir answers/
+    robovoice assist --robot sim --input a.wav --record session.wav   # mic | robot, stereo, checkable
 
 Both print a live transcript: what was heard, tool calls and results, what the robot says,
-and per-stage latencies from the end of speech.
+and per-stage latencies from the user's last word and from the end-of-turn decision.
 """
 
 from __future__ import annotations
@@ -64,6 +65,10 @@ def register(subparsers: Any) -> None:  # argparse's _SubParsersAction is privat
     source.add_argument("--mic", action="store_true", help="listen on the default microphone (needs PortAudio)")
     source.add_argument("--input", nargs="+", type=Path, metavar="FILE.wav", help="WAV files to process")
     assist.add_argument("--output-dir", type=Path, metavar="DIR", help="write the spoken answers here")
+    assist.add_argument("--record", type=Path, metavar="OUT.wav",
+                        help="with --input: write the session as a stereo WAV aligned sample by sample with the "
+                             "first input file: channel 1 what the microphone heard, channel 2 what the robot "
+                             "played (voice.recording)")
     assist.add_argument("--stt", choices=["whisper", "moonshine", "none"], default=None,
                         help="speech-to-text model (default: [voice] stt of the config, whisper; "
                              "none: only with an audio-capable --llm)")
@@ -129,12 +134,16 @@ class TranscriptPrinter:
             case v.RobotStopped(ok=ok, latency_ms=ms, detail=detail):
                 self.line(f"  ■ robot {'stopped' if ok else 'DID NOT STOP'} {ms:.0f} ms after the end of speech"
                           + ("" if ok else f": {detail}"))
-            case v.VoiceTurnFinished(cancelled=cancelled, latency_ms=marks):
+            case v.VoiceTurnFinished(cancelled=cancelled, latency_ms=marks, result=result):
                 line = latency_line(dict(marks))
+                spoken = latency_line(result.metrics.from_speech_end()) if result is not None else ""
                 if cancelled:
                     self.line("  · turn cancelled")
+                elif spoken:  # "end of speech": the user's last word (issue 12)
+                    self.line(f"  latency from end of speech: {spoken}")
+                    self.line(f"  latency from the end-of-turn decision: {line}")
                 elif line:
-                    self.line(f"  latency from end of speech: {line}")
+                    self.line(f"  latency from the end-of-turn decision: {line}")
             case _:
                 pass
 
@@ -228,6 +237,11 @@ async def _assist(args: argparse.Namespace) -> int:
         missing = [str(p) for p in args.input if not p.is_file()]
         if missing:
             raise ConfigError(f"no such WAV file: {', '.join(missing)}")
+    if args.record is not None:
+        if not args.input:
+            raise ConfigError("--record needs --input: it records the simulated room the WAV files are spoken into")
+        if not args.record.parent.is_dir():
+            raise ConfigError(f"--record {args.record}: no folder {args.record.parent}; create it first")
     target = robot_config_from_args(args, config)
     printer.line("loading the voice models ...")
     models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=stt)
@@ -260,16 +274,19 @@ async def _assist_files(args: argparse.Namespace, models: Any, backend: Any, lin
     from robovoice.voice.pipeline import VoicePipeline
     from robovoice.voice.room import SimulatedRoom
 
-    room = SimulatedRoom()
+    room = SimulatedRoom(record=args.record is not None)  # paced in real time, like a microphone
     pipeline = VoicePipeline(models, backend, link.tools, source=room.mic, sink=room.speaker,
                              reference=room.reference, observer=printer, output_dir=args.output_dir,
                              **_pipeline_options(link, config))
+    starts: list[float] = []  # stream time at which each input file starts
 
     async def feed() -> None:
         try:
             for path in args.input:
                 printer.line(f"── {path} ──")
-                await room.say(read_wav(path), gap_s=0.5).finished(timeout=600)
+                speech = room.say(read_wav(path), gap_s=0.5)
+                starts.append(speech.start)
+                await speech.finished(timeout=600)
                 await room.until(room.now + 0.8)
                 await pipeline.wait_idle(timeout=300)
         finally:
@@ -280,6 +297,12 @@ async def _assist_files(args: argparse.Namespace, models: Any, backend: Any, lin
         group.create_task(feed(), name="assist-files")
     if args.output_dir:
         printer.line(f"answers written to {args.output_dir}/")
+    if args.record is not None and starts:
+        from robovoice.voice.recording import write_session
+
+        write_session(args.record, room, origin=starts[0])
+        offsets = ", ".join(f"{p.name} at {t - starts[0]:.3f} s" for p, t in zip(args.input, starts, strict=False))
+        printer.line(f"session recorded to {args.record} (channel 1 microphone, channel 2 robot; {offsets})")
 
 
 async def _assist_mic(args: argparse.Namespace, models: Any, backend: Any, link: RobotConnection,

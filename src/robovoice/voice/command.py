@@ -26,6 +26,7 @@ from robovoice.voice.confidence import DIDNT_CATCH, transcript_of, unsure_reason
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import Emit, TranscriptReady, VoiceTurnFinished, VoiceTurnStarted
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
+from robovoice.voice.lastword import last_word_end
 from robovoice.voice.listener import HeardUtterance
 from robovoice.voice.motion import MotionWatch
 from robovoice.voice.progress import ProgressNarrator
@@ -90,7 +91,7 @@ class Commands:
         """A command turn for `utt`, taking the floor (whoever held it is cancelled)."""
         metrics = TurnMetrics(start=received)
         metrics.mark("endpoint", received + compute_s)
-        metrics.speech_end = self.wall_time(utt.end)  # utt.end: the last voiced frame, in stream time
+        metrics.speech_end = self.wall_time(last_word_end(utt.audio, utt.end))  # stream time -> clock
         turn = CommandTurn(self, self.floor.new_turn(), metrics)
         self.floor.take(turn.id, turn.run(utt, verdict, speculation))
 
