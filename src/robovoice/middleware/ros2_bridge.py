@@ -117,8 +117,24 @@ class RosBridge:
         callbacks wait for handlers on the event loop, so they get threads of their own."""
         if self._host_executor is None:
             self._host_executor = MultiThreadedExecutor(num_threads=HOST_THREADS, context=self.context)
-            threading.Thread(target=self._host_executor.spin, name="robovoice-rclpy-host", daemon=True).start()
+            threading.Thread(target=self._spin_host, args=(self._host_executor,), name="robovoice-rclpy-host",
+                             daemon=True).start()
         return self._host_executor
+
+    def _spin_host(self, executor: MultiThreadedExecutor) -> None:
+        """Spin the hosted nodes' executor until close. rclpy re-raises a failed callback in the
+        spinning thread, which ends `spin()`: a node that leaves while answering (its service
+        destroyed before rclpy sends the response: `InvalidHandle`) would stop the serving of
+        every other hosted node. That answer is lost (its caller gets `node_unavailable` from
+        the graph); the others are served on."""
+        while True:
+            try:
+                executor.spin()
+                return  # shut down
+            except Exception as exc:
+                if self._closed or not self.context.ok():
+                    return
+                log.info("a hosted node's callback failed (%s: %s); serving the others on", type(exc).__name__, exc)
 
     def _spin(self) -> None:
         try:
