@@ -40,7 +40,7 @@ def summary(report: SoakReport) -> str:
         f"(x{report.stream['speed_up']}; {report.stream['paced_real_time_s']:.0f} s of it paced at real time "
         f"while the assistant was busy); load {report.load_avg_1_5_15}",
         f"commands: {c['answered']}/{c['given']} answered, {c['done']}/{c['given']} done right; "
-        f"barge-ins heard {c['barge_ins_heard']}",
+        f"barge-ins heard {c['barge_ins_heard']}; not idle within the turn timeout {c['late']}",
         *(f"  {k}: {v['answered']}/{v['given']} answered, {v['done']} done" for k, v in c["by_kind"].items()
           if v["given"]),
         *(f"  not done at {o['sim_at_s']:.0f} s: {o['said']!r}: {o['problem']}" for o in c["not_done"]),

@@ -77,6 +77,7 @@ class SoakReport:
             settings=settings, sim_hours=round(hours, 3), wall_s=round(wall_s, 1),
             commands={"given": len(outcomes), "answered": sum(o.answered for o in outcomes),
                       "done": sum(o.done for o in outcomes), "barge_ins_heard": sum(o.barged_in for o in outcomes),
+                      "late": sum(o.late for o in outcomes),
                       "by_kind": by_kind, "not_done": [o.to_dict() for o in outcomes if not o.done],
                       "wall_s_p50": _median([o.wall_s for o in outcomes])},
             false_wakes={"count": tally.false_wakes, "per_hour": round(tally.false_wakes / hours, 2) if hours else None,

@@ -45,6 +45,7 @@ log = logging.getLogger(__name__)
 BACKGROUND_KINDS = ("tv", "music", "pink", "quiet")
 BACKGROUND_WEIGHTS = (0.45, 0.2, 0.2, 0.15)
 NEVER = 1e9  # a bound for waits on stream time that the script itself ends
+HANG_S = 900.0  # more than this after a command's first timeout: the turn hangs
 
 
 @dataclass(frozen=True, slots=True)
@@ -128,7 +129,11 @@ async def _give(run: _Run, cmd: Command, sounds: SoakSounds, timeout: float) -> 
             await room.say(sounds.command(cmd.follow)).finished(timeout)  # the barge-in
         await room.until(room.now + 0.8, timeout)
         if not await pipeline.wait_idle(timeout):
-            outcome.problem = f"still busy {timeout:.0f} s after the command"
+            # slow, not lost: keep the command's window open so its late calls are not counted as
+            # unasked; a turn that never ends is a hang, reported as such
+            outcome.late = True
+            if not await pipeline.wait_idle(HANG_S):
+                outcome.problem = f"still busy {timeout + HANG_S:.0f} s after the command (a hang)"
         await _wait(lambda: not sim.state.moving, run, 60.0)
         await room.until(room.now + 0.5, timeout)
     except TimeoutError:
@@ -175,7 +180,7 @@ async def _script(run: _Run, settings: SoakSettings, sounds: SoakSounds, rng: np
             outcome = await _give(run, next_command(rng, run.sim.state), sounds, settings.turn_timeout_s)
             run.tally.outcomes.append(outcome)
             log.info("soak %.0f s (wall %.1f s): %s -> %s", outcome.sim_at, outcome.wall_s, outcome.command.say,
-                     "ok" if outcome.done else outcome.problem)
+                     ("ok" if outcome.done else str(outcome.problem)) + (" (late)" if outcome.late else ""))
     finally:
         run.room.close()
 

@@ -77,13 +77,14 @@ class Outcome:
     done: bool = False
     problem: str | None = None
     barged_in: bool = False
+    late: bool = False  # not idle within the turn timeout (then waited on, up to a hang bound)
     wall_s: float = 0.0
     calls: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, object]:
         return {"kind": self.command.kind, "said": self.command.say, "follow": self.command.follow,
                 "sim_at_s": round(self.sim_at, 1), "answered": self.answered, "done": self.done,
-                "problem": self.problem, "barged_in": self.barged_in, "calls": self.calls,
+                "problem": self.problem, "barged_in": self.barged_in, "late": self.late, "calls": self.calls,
                 "wall_s": round(self.wall_s, 2)}
 
 
