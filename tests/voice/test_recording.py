@@ -150,3 +150,16 @@ def test_write_session_names_a_missing_folder(tmp_path: Path) -> None:
     room = SimulatedRoom(record=True)
     with pytest.raises(AudioError, match="no folder"):
         write_session(tmp_path / "nope" / "s.wav", room, origin=0.0)
+
+
+@pytest.mark.timeout(300)
+async def test_assist_record_names_what_is_missing(tmp_path: Path) -> None:
+    for args, message in ((["--mic", "--record", str(tmp_path / "s.wav")], "--record needs --input"),
+                          (["--input", str(TEST_AUDIO / "wake_piper_projector.wav"), "--record",
+                            str(tmp_path / "nope" / "s.wav")], f"no folder {tmp_path / 'nope'}; create it first")):
+        proc = await asyncio.create_subprocess_exec(
+            sys.executable, "-m", "robovoice.cli", "assist", "--robot", "sim", *args,
+            stdout=asyncio.subprocess.PIPE, stderr=asyncio.subprocess.STDOUT)
+        async with asyncio.timeout(120):
+            out, _ = await proc.communicate()
+        assert proc.returncode == 1 and message in out.decode(), out.decode()[-2000:]
