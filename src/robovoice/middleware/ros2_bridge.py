@@ -109,7 +109,8 @@ class RosBridge:
         self.group = ReentrantCallbackGroup()
         self._executor = SingleThreadedExecutor(context=self.context)
         self._executor.add_node(self.node)
-        self._thread = threading.Thread(target=self._spin, name="robovoice-rclpy", daemon=True)
+        self._thread = threading.Thread(target=self._spin_on, args=(self._executor,), name="robovoice-rclpy",
+                                        daemon=True)
         self._thread.start()
 
     def host_executor(self) -> MultiThreadedExecutor:
@@ -117,16 +118,16 @@ class RosBridge:
         callbacks wait for handlers on the event loop, so they get threads of their own."""
         if self._host_executor is None:
             self._host_executor = MultiThreadedExecutor(num_threads=HOST_THREADS, context=self.context)
-            threading.Thread(target=self._spin_host, args=(self._host_executor,), name="robovoice-rclpy-host",
+            threading.Thread(target=self._spin_on, args=(self._host_executor,), name="robovoice-rclpy-host",
                              daemon=True).start()
         return self._host_executor
 
-    def _spin_host(self, executor: MultiThreadedExecutor) -> None:
-        """Spin the hosted nodes' executor until close. rclpy re-raises a failed callback in the
-        spinning thread, which ends `spin()`: a node that leaves while answering (its service
-        destroyed before rclpy sends the response: `InvalidHandle`) would stop the serving of
-        every other hosted node. That answer is lost (its caller gets `node_unavailable` from
-        the graph); the others are served on."""
+    def _spin_on(self, executor: SingleThreadedExecutor | MultiThreadedExecutor) -> None:
+        """Spin `executor` until close. rclpy re-raises a failed callback in the spinning thread,
+        which ends `spin()`: a hosted node that leaves while answering (its service destroyed
+        before rclpy sends the response: `InvalidHandle`) would stop the serving of every other
+        node, and on the client side every call. That one answer is lost (its caller gets
+        `node_unavailable` from the graph); the rest is served on."""
         while True:
             try:
                 executor.spin()
@@ -134,14 +135,7 @@ class RosBridge:
             except Exception as exc:
                 if self._closed or not self.context.ok():
                     return
-                log.info("a hosted node's callback failed (%s: %s); serving the others on", type(exc).__name__, exc)
-
-    def _spin(self) -> None:
-        try:
-            self._executor.spin()
-        except Exception:  # the context was shut down under it, or a bug: either way, say so
-            if not self._closed:
-                log.exception("the rclpy executor stopped")
+                log.info("an rclpy callback failed (%s: %s); spinning on", type(exc).__name__, exc)
 
     @property
     def loop(self) -> asyncio.AbstractEventLoop:
@@ -154,16 +148,18 @@ class RosBridge:
         with contextlib.suppress(RuntimeError):  # the loop closed meanwhile
             self._loop.call_soon_threadsafe(fn, *args)
 
-    def wait(self, future: Future[Any]) -> asyncio.Future[Any]:
+    def wait(self, future: Future[Any], *, at_once: bool = False) -> asyncio.Future[Any]:
         """An asyncio future settled (on the loop) when the rclpy `future` is done.
 
         rclpy runs a future's done callbacks as a new executor task, one more turn of the
-        executor (a wait set rebuilt and waited on) before the answer is handed over; the hand-
-        over is one thread-safe `post`, so it is made at once, on the executor thread, when the
-        result is set (`_now`). Should the result be set first, the callback runs as rclpy's task:
-        the same, one turn later."""
+        executor (a wait set rebuilt and waited on) before the answer is handed over. With
+        `at_once` (a service response) the hand-over, one thread-safe `post`, is made on the
+        executor thread when the result is set (`_now`); should the result be set first, the
+        callback runs as rclpy's task, one turn later. Not for an action's result: rclpy sets it
+        before it delivers the feedback taken in the same turn, which would then come too late."""
         waiter: asyncio.Future[Any] = self._loop.create_future()
-        _now(future)
+        if at_once:
+            _now(future)
 
         def settle(done: Future[Any]) -> None:
             if waiter.done():

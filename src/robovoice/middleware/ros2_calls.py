@@ -85,7 +85,7 @@ class Ros2Calls:
         deadline = time.monotonic() + timeout
         await _matched(client.service_is_ready, lambda: self._presence.service_up(target.ros_name), deadline)
         future = client.call_async(request)
-        waiter = self._bridge.wait(future)
+        waiter = self._bridge.wait(future, at_once=True)
         try:
             return await self._await(waiter, self._presence.service_up, node, target, deadline, what)
         except BaseException:
