@@ -133,3 +133,18 @@ async def test_an_unsure_spoken_stop_still_stops_at_once(
     assert stopped.ok and not s.sim.state.moving
     assert server.requests == []
     assert not [e for e in s.log.of(UtteranceIgnored) if e.reason.startswith("unsure")]
+
+
+def test_the_sweep_counts_what_each_rule_turns_away() -> None:
+    from robovoice.voice.confidence_eval import sweep
+
+    rows = [
+        {"id": "clear", "unintelligible": False, "avg_logprob": -0.2, "mean_word_probability": 0.9},
+        {"id": "short", "unintelligible": False, "avg_logprob": -0.54, "mean_word_probability": 0.06},
+        {"id": "noise", "unintelligible": True, "avg_logprob": -1.06, "mean_word_probability": 0.2},
+        {"id": "cut", "unintelligible": True, "avg_logprob": -0.3, "mean_word_probability": None},
+    ]
+    lines = {line.split("  commands")[0].strip(): line for line in sweep(rows)}
+    assert "commands 0/2 []  unintelligible 1/2 ['noise']" in lines["avg_logprob < -0.6"]
+    assert "commands 1/2 ['short']  unintelligible 1/2 ['noise']" in lines["avg_logprob < -0.5"]
+    assert "commands 1/2 ['short']  unintelligible 1/2 ['noise']" in lines["mean word probability < 0.3"]
