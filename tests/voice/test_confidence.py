@@ -139,12 +139,14 @@ def test_the_sweep_counts_what_each_rule_turns_away() -> None:
     from robovoice.voice.confidence_eval import sweep
 
     rows = [
-        {"id": "clear", "unintelligible": False, "avg_logprob": -0.2, "mean_word_probability": 0.9},
-        {"id": "short", "unintelligible": False, "avg_logprob": -0.54, "mean_word_probability": 0.06},
-        {"id": "noise", "unintelligible": True, "avg_logprob": -1.06, "mean_word_probability": 0.2},
-        {"id": "cut", "unintelligible": True, "avg_logprob": -0.3, "mean_word_probability": None},
+        {"id": "clear", "kind": "command", "avg_logprob": -0.2, "mean_word_probability": 0.9},
+        {"id": "short", "kind": "command", "avg_logprob": -0.54, "mean_word_probability": 0.06},
+        {"id": "noise", "kind": "unintelligible", "avg_logprob": -1.06, "mean_word_probability": 0.2},
+        {"id": "cut", "kind": "unintelligible", "avg_logprob": -0.3, "mean_word_probability": None},
+        {"id": "later", "kind": "other", "avg_logprob": -0.1, "mean_word_probability": 0.95},
     ]
-    lines = {line.split("  commands")[0].strip(): line for line in sweep(rows)}
-    assert "commands 0/2 []  unintelligible 1/2 ['noise']" in lines["avg_logprob < -0.6"]
-    assert "commands 1/2 ['short']  unintelligible 1/2 ['noise']" in lines["avg_logprob < -0.5"]
-    assert "commands 1/2 ['short']  unintelligible 1/2 ['noise']" in lines["mean word probability < 0.3"]
+    lines = {line.split(" command ")[0].strip(): line for line in sweep(rows)}
+    tail = "  other 0/1 []"
+    assert lines["avg_logprob < -0.6"].endswith("command 0/2 []  unintelligible 1/2 ['noise']" + tail)
+    assert lines["avg_logprob < -0.5"].endswith("command 1/2 ['short']  unintelligible 1/2 ['noise']" + tail)
+    assert lines["mean word probability < 0.3"].endswith("command 1/2 ['short']  unintelligible 1/2 ['noise']" + tail)

@@ -5,8 +5,10 @@ was chosen from (on dev sets only; docs/judgement.md, "Transcript confidence").
     python -m robovoice.voice.confidence_eval tests/data/eval/audio.jsonl tests/data/eval/audio-dev-unsure.jsonl
 
 Each clip with the wake word is transcribed whole, as the pipeline transcribes a command
-(Whisper tiny.en, the sim robot's tool hint, word scores on); a clip whose case expects no
-tool call counts as unintelligible. Prints one JSON line per clip, then the sweep.
+(Whisper tiny.en, the sim robot's tool hint, word scores on). Clips are counted as
+commands (the case expects a tool call), unintelligible (class ``unintelligible``) or other
+speech (negations, mentions, questions: no call expected, but clearly said). Prints one JSON
+line per clip, then the sweep.
 """
 
 from __future__ import annotations
@@ -49,7 +51,8 @@ def score_clips(paths: Sequence[str]) -> list[dict[str, Any]]:
             heard = stt.transcribe(read_wav(case.audio), hint)
             assert heard.confidence is not None
             command = strip_wake_words(heard.text)
-            row = {"id": case.id, "unintelligible": not case.expect, "text": heard.text,
+            kind = "command" if case.expect else "unintelligible" if case.case_class == "unintelligible" else "other"
+            row = {"id": case.id, "kind": kind, "text": heard.text,
                    "avg_logprob": round(heard.confidence.avg_logprob, 3),
                    "mean_word_probability": mean_word_probability(heard.confidence, command),
                    "no_speech": round(heard.confidence.no_speech_prob, 3)}
@@ -59,13 +62,14 @@ def score_clips(paths: Sequence[str]) -> list[dict[str, Any]]:
 
 
 def sweep(rows: Sequence[dict[str, Any]]) -> list[str]:
-    """One line per rule: how many commands and how many unintelligible clips it turns away."""
+    """One line per rule: how many clips of each kind it turns away."""
     def line(name: str, away: Any) -> str:
-        commands = [r["id"] for r in rows if not r["unintelligible"] and away(r)]
-        unsure = [r["id"] for r in rows if r["unintelligible"] and away(r)]
-        n_commands = sum(not r["unintelligible"] for r in rows)
-        return (f"{name:32} commands {len(commands)}/{n_commands} {commands}  "
-                f"unintelligible {len(unsure)}/{len(rows) - n_commands} {unsure}")
+        parts = []
+        for kind in ("command", "unintelligible", "other"):
+            of_kind = [r for r in rows if r["kind"] == kind]
+            gone = [r["id"] for r in of_kind if away(r)]
+            parts.append(f"{kind} {len(gone)}/{len(of_kind)} {gone}")
+        return f"{name:32} " + "  ".join(parts)
 
     out = [line(f"avg_logprob < {t}", lambda r, t=t: r["avg_logprob"] < t) for t in LOGPROB_THRESHOLDS]
     out += [line(f"mean word probability < {t}", lambda r, t=t: (r["mean_word_probability"] or 1.0) < t)
