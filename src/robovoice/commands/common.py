@@ -11,7 +11,6 @@ check-manifests, chat, eval, assist, ...): one robot address, one config, strict
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import logging
 import math
 import os
@@ -33,7 +32,7 @@ from robovoice.address import (
 from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.config import BackendConfig, Config, LLMConfig, RobotConfig, load_config, validation_message
 from robovoice.errors import ConfigError
-from robovoice.llm.base import Deadlines, LLMBackend, ToolSpec
+from robovoice.llm.base import LLMBackend, ToolSpec
 from robovoice.llm.failover import FailoverBackend
 from robovoice.llm.registry import ACCEPTED_FORMS, BackendSpec, api_key_from, chain_from_specs
 
@@ -186,14 +185,6 @@ def add_llm_args(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--config", type=Path, metavar="FILE", help="a robovoice.toml (see docs/llm.md)")
 
 
-def _deadlines(connect_s: float | None, first_token_s: float | None) -> Deadlines | None:
-    if connect_s is None and first_token_s is None:
-        return None
-    base = Deadlines()
-    return dataclasses.replace(base, connect_s=connect_s or base.connect_s,
-                               first_token_s=first_token_s or base.first_token_s)
-
-
 def llm_config_from_args(args: argparse.Namespace, config: Config) -> LLMConfig:
     """The backends: from --llm (in order, with --model, --api-key-* and --audio-input for the
     URL ones), else the config file's ``[[llm.backends]]``, else the local model. The command
@@ -232,7 +223,7 @@ def backend_spec(backend: BackendConfig, env: Mapping[str, str]) -> BackendSpec:
     assert backend.url is not None
     return BackendSpec(backend.url, model=backend.model, accepts_audio=backend.accepts_audio,
                        api_key=api_key_from(env, env_var=backend.api_key_env, key_file=backend.api_key_file),
-                       extra_body=backend.extra_body, deadlines=_deadlines(backend.connect_s, backend.first_token_s))
+                       extra_body=backend.extra_body, deadlines=backend.deadlines())
 
 
 def backend_from_args(args: argparse.Namespace, config: Config | None = None) -> FailoverBackend:
