@@ -27,6 +27,8 @@ CASES: list[tuple[str, str, list[TextCall]]] = [
     ('{"name": "navigate_to", "arguments": "{\\"target\\": \\"kitchen\\"}"}', "", [DRIVE]),  # arguments as a string
     ('[TOOL_CALLS][{"name": "navigate_to", "arguments": {"target": "kitchen"}}]', "", [DRIVE]),
     ('Going now.\nfunctions.navigate_to:\n{"target": "kitchen"}', "Going now.\n", [DRIVE]),
+    # the Qwen GGUF's own template through llama-cpp-python's server: Jinja's escaped braces, rendered literally
+    ('{{"name": "navigate_to", "arguments": {"target": "kitchen"}}}}', "", [DRIVE]),
 ]
 
 PLAIN = [
@@ -37,6 +39,8 @@ PLAIN = [
     '{"answer": 42}',  # a JSON answer that is not a call
     '{"name": "dance", "arguments": {}}',  # a call of a tool that was not offered: text (the guard drops it)
     "[laughs] Good one.",
+    "{{not a call}}",
+    '{{"name": "dance", "arguments": {}}}}',  # doubled braces, but not an offered tool
 ]
 
 

@@ -169,7 +169,10 @@ def _json_calls(text: str, names: frozenset[str] | None) -> Iterator[TextCall]:
     try:
         data, end = json.JSONDecoder().raw_decode(text)
     except json.JSONDecodeError:
-        return
+        undoubled = _undoubled(text)
+        if undoubled is None:
+            return
+        data, end, text = undoubled
     if names is not None and text[end:].strip():
         return
     for item in data if isinstance(data, list) else [data]:
@@ -180,6 +183,27 @@ def _json_calls(text: str, names: frozenset[str] | None) -> Iterator[TextCall]:
         call = _call_from_object(item)
         if call is not None:
             yield call
+
+
+def _undoubled(text: str) -> tuple[Any, int, str] | None:
+    """A call whose braces a chat template doubled (``{{"name": …}}}}``: Jinja's escaped ``{{``
+    rendered literally, seen from the Qwen GGUF's own template): the object inside, the end of
+    it, and the text with the surplus closing braces removed; None when it is not that."""
+    stripped = text.lstrip()
+    if not stripped.startswith("{{"):
+        return None
+    inner = stripped.lstrip("{")
+    if not inner.lstrip().startswith('"'):
+        return None
+    inner = "{" + inner
+    try:
+        data, end = json.JSONDecoder().raw_decode(inner)
+    except json.JSONDecodeError:
+        return None
+    rest = inner[end:].strip()
+    if rest.strip("}"):
+        return None
+    return data, end, inner[:end]
 
 
 def _call_from_object(item: Any) -> TextCall | None:
