@@ -17,9 +17,10 @@ __all__ = ["SoakReport", "SoakSettings", "run_soak", "write_memory_plot"]
 
 
 def write_memory_plot(report: SoakReport, path: Path) -> Path:
-    """RSS, Python heap blocks and gc-tracked objects over simulated minutes, as a PNG."""
+    """RSS (all, and anonymous only), Python heap blocks and gc-tracked objects over simulated minutes, as a PNG."""
     xs = [s.sim_s / 60.0 for s in report.samples]
     return write_png_plot(path, [("PROCESS RSS (MIB)", xs, [s.rss_mib for s in report.samples]),
+                                 ("RSS WITHOUT FILE PAGES (ANON, MIB)", xs, [s.rss_anon_mib for s in report.samples]),
                                  ("PYTHON HEAP BLOCKS (THOUSANDS)", xs, [s.heap_blocks / 1000 for s in report.samples]),
                                  ("GC OBJECTS (THOUSANDS)", xs, [s.gc_objects / 1000 for s in report.samples])],
                           x_label="SIMULATED MINUTES")

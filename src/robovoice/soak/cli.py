@@ -50,6 +50,7 @@ def summary(report: SoakReport) -> str:
         f"errors: {e['error_logs']} ERROR records, {e['warning_logs']} warnings, unhandled {len(e['unhandled'])}",
         *(f"  {line}" for line in e["first_errors"] + e["unhandled"]),
         f"memory: RSS {m['rss_mib_first_last']} MiB, growth after warm-up {m['rss_growth_pct_per_hour']} %/h; "
+        f"anonymous RSS {m['rss_anon_mib_first_last']} MiB, {m['rss_anon_growth_pct_per_hour']} %/h; "
         f"heap blocks {m['heap_blocks_first_last']}, {m['heap_growth_pct_per_hour']} %/h; "
         f"gc objects {m['gc_objects_growth_pct_per_hour']} %/h; fds {m['fds_first_last']}",
         f"left behind: tasks {lk['tasks_left']} ({lk['tasks_before']} -> {lk['tasks_after']}), "

@@ -1,9 +1,10 @@
 """Process health during the soak: RSS, Python heap blocks, gc, fds, threads, asyncio tasks.
 
 Cheap enough to take every few simulated minutes (tracemalloc would slow the whole run):
-RSS from /proc/self/statm, `sys.getallocatedblocks()` for the Python heap, `gc.get_count()`
-and `len(gc.get_objects())` (after a full collection, so garbage is not counted), open file
-descriptors from /proc/self/fd, `threading.active_count()`, `len(asyncio.all_tasks())`.
+RSS from /proc/self/statm (and without file-backed pages, RssAnon), `sys.getallocatedblocks()`
+for the Python heap, `gc.get_count()` and `len(gc.get_objects())` (after a full collection, so
+garbage is not counted), open file descriptors from /proc/self/fd, `threading.active_count()`,
+`len(asyncio.all_tasks())`.
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ class Sample:
     fds: int
     threads: int
     tasks: int
+    rss_anon_mib: float = 0.0  # RSS without file-backed pages (the model's memory-mapped weights)
 
     def to_dict(self) -> dict[str, Any]:
         return asdict(self)
@@ -45,6 +47,19 @@ def rss_mib() -> float:
             return int(f.read().split()[1]) * _PAGE / 2**20
     except OSError:  # not Linux: the peak instead of the current size
         return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def rss_anon_mib() -> float:
+    """Anonymous resident memory (heap, arenas, buffers): what a leak grows, unlike the pages
+    of a memory-mapped model file, which come and go with use and memory pressure."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("RssAnon:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return 0.0
 
 
 def open_fds() -> int:
@@ -60,7 +75,7 @@ def take_sample(sim_s: float, wall_s: float) -> Sample:
     counts = gc.get_count()
     return Sample(round(sim_s, 1), round(wall_s, 1), round(rss_mib(), 2), sys.getallocatedblocks(),
                   len(gc.get_objects()), (counts[0], counts[1], counts[2]), open_fds(), threading.active_count(),
-                  len(asyncio.all_tasks()))
+                  len(asyncio.all_tasks()), round(rss_anon_mib(), 2))
 
 
 def growth_per_hour(samples: Sequence[Sample], field: str, warm_up_s: float) -> float | None:

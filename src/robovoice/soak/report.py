@@ -31,6 +31,7 @@ class Tally:
     tasks_after: int = 0
     threads_before: int = 0
     threads_after: int = 0
+    threads_new: list[str] = field(default_factory=list)
     paced_s: float = 0.0
     free_s: float = 0.0
     sim_s: float = 0.0
@@ -88,13 +89,17 @@ class SoakReport:
             memory={"warm_up_s": warm_up_s,
                     "rss_mib_first_last": [first.rss_mib, last.rss_mib] if first and last else None,
                     "rss_growth_pct_per_hour": growth_per_hour(samples, "rss_mib", warm_up_s),
+                    "rss_anon_mib_first_last": [first.rss_anon_mib, last.rss_anon_mib] if first and last else None,
+                    "rss_anon_growth_pct_per_hour": growth_per_hour(samples, "rss_anon_mib", warm_up_s),
                     "heap_blocks_first_last": [first.heap_blocks, last.heap_blocks] if first and last else None,
                     "heap_growth_pct_per_hour": growth_per_hour(samples, "heap_blocks", warm_up_s),
                     "gc_objects_growth_pct_per_hour": growth_per_hour(samples, "gc_objects", warm_up_s),
                     "fds_first_last": [first.fds, last.fds] if first and last else None},
             leaks={"tasks_before": tally.tasks_before, "tasks_after": tally.tasks_after,
                    "tasks_left": tally.tasks_after - tally.tasks_before, "threads_before": tally.threads_before,
-                   "threads_after": tally.threads_after, "threads_left": tally.threads_after - tally.threads_before},
+                   "threads_after": tally.threads_after, "threads_new": tally.threads_new,
+                   # asyncio's default executor (to_thread) keeps its few workers for reuse: pooled, not leaked
+                   "threads_left": sum(not n.startswith("asyncio_") for n in tally.threads_new)},
             stream={"sim_s": round(tally.sim_s, 1), "paced_real_time_s": round(tally.paced_s, 1),
                     "free_running_s": round(tally.free_s, 1),
                     "speed_up": round(tally.sim_s / wall_s, 2) if wall_s else None},

@@ -236,7 +236,7 @@ async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSetti
                                      moving=lambda: sim.state.moving)
             source.busy = lambda: not pipeline.floor.idle or pipeline.speech.busy or sim.state.moving
             run = _Run(room, pipeline, sim, tally, actuating)
-            tally.tasks_before, tally.threads_before = len(asyncio.all_tasks()), threading.active_count()
+            tally.tasks_before, threads_before = len(asyncio.all_tasks()), {t.name for t in threading.enumerate()}
             try:
                 async with asyncio.TaskGroup() as group:
                     group.create_task(pipeline.run(finish_timeout_s=30.0), name="soak-pipeline")
@@ -249,7 +249,10 @@ async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSetti
                 tally.unhandled.append(f"{type(exc).__name__}: {exc}"[:300])
             await asyncio.sleep(0)
             samples.append(take_sample(room.now, time.perf_counter() - wall0))
-            tally.tasks_after, tally.threads_after = len(asyncio.all_tasks()), threading.active_count()
+            tally.tasks_after = len(asyncio.all_tasks())
+            tally.threads_before = len(threads_before)
+            threads_after = {t.name for t in threading.enumerate()}
+            tally.threads_after, tally.threads_new = len(threads_after), sorted(threads_after - threads_before)
             tally.paced_s, tally.free_s = source.paced_s, source.free_s
             tally.sim_s = room.now
     finally:
