@@ -5,10 +5,10 @@
   (synthesised with Piper, played into a `SimulatedRoom` in real time). Every stage is given
   from two origins: the user's last word (the VAD's last voiced frame, issue 12:
   ``speech_end_to_first_audio``) and the end-of-turn decision, which comes after the
-  end-of-turn silence. Then the *naive chain* of the same models in the same process, for
-  comparison: speech-to-text of the whole clip once the full end-of-turn silence has passed,
-  the assistant's whole turn, speech synthesis of the whole reply (no streaming, no
-  speculation), and the ratio of the two.
+  end-of-turn silence. After each turn, the *naive chain* of the same models in the same
+  process on the same clip, for comparison: speech-to-text of the whole clip once the full
+  end-of-turn silence has passed, the assistant's whole turn, speech synthesis of the whole
+  reply (no streaming, no speculation); and the ratio of the two.
 - `bench_overhead`: the pipeline's own cost per turn with every model replaced by an
   instant fake (so end of speech -> first audio *is* the overhead: framing, queues, tasks,
   executors, the assistant loop, the speech queue), plus the front end's CPU per second of
@@ -30,7 +30,7 @@ import math
 import os
 import platform
 import time
-from collections.abc import AsyncGenerator, Sequence
+from collections.abc import AsyncGenerator, Awaitable, Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -155,7 +155,9 @@ def _tone_command(seconds: float = 1.0) -> AudioChunk:
 
 
 async def _run_turns(pipeline: VoicePipeline, room: SimulatedRoom, commands: Sequence[AudioChunk],
-                     finished: list[VoiceTurnFinished], *, reset: bool, timeout: float) -> None:
+                     finished: list[VoiceTurnFinished], *, reset: bool, timeout: float,
+                     after: Callable[[AudioChunk], Awaitable[None]] | None = None) -> None:
+    """Say each command once the pipeline is idle; `after(command)` runs after each turn."""
     try:
         await room.until(room.now + 0.5)
         for audio in commands:
@@ -165,6 +167,8 @@ async def _run_turns(pipeline: VoicePipeline, room: SimulatedRoom, commands: Seq
             await room.until(room.now + 0.8, timeout)
             if not await pipeline.wait_idle(timeout):
                 log.warning("a benchmark turn did not finish within %.0f s", timeout)
+            if after is not None:
+                await after(audio)
     finally:
         room.close()
 
@@ -211,31 +215,26 @@ def _table(turns: Sequence[dict[str, float]]) -> dict[str, dict[str, float]]:
     return {k: {"p50": v.p50, "p95": v.p95, "n": v.n} for k, v in stage_table(turns).items()}
 
 
-async def naive_chain(models: VoiceModels, assistant: Assistant, clips: Sequence[AudioChunk], *,
-                      end_silence_s: float, wake_phrase: str, hint: str) -> list[dict[str, float]]:
-    """The plain chain of the same models, one clip at a time, in ms from the last word:
-    the full end-of-turn silence (a wait, so its configured length is added, not slept),
-    speech-to-text of the whole clip, the assistant's whole turn, speech synthesis of the
-    whole reply. Nothing overlaps, nothing is streamed or speculated."""
+async def naive_turn(models: VoiceModels, assistant: Assistant, clip: AudioChunk, *,
+                     end_silence_s: float, wake_phrase: str, hint: str) -> dict[str, float]:
+    """The plain chain of the same models on one clip, in ms from the last word: the full
+    end-of-turn silence (a wait, so its configured length is added, not slept), speech-to-text
+    of the whole clip, the assistant's whole turn, speech synthesis of the whole reply.
+    Nothing overlaps, nothing is streamed or speculated."""
     assert models.stt is not None
-    turns: list[dict[str, float]] = []
-    for clip in clips:
-        assistant.reset()
-        started = time.perf_counter()
-        heard = await asyncio.to_thread(models.stt.transcribe, clip, hint)
-        transcribed = time.perf_counter()
-        result = await assistant.turn(strip_wake_words(heard.text, wake_phrase))
-        answered = time.perf_counter()
-        await asyncio.to_thread(models.tts.synthesize, result.reply or "Okay.")
-        spoken = time.perf_counter()
-        wait_ms = end_silence_s * 1000.0
-        log.info("naive chain %r: first audio %.0f ms from the last word", heard.text,
-                 wait_ms + (spoken - started) * 1000)
-        turns.append({"endpoint": round(wait_ms, 1),
-                      "transcript": round(wait_ms + (transcribed - started) * 1000, 1),
-                      "reply": round(wait_ms + (answered - started) * 1000, 1),
-                      "first_audio": round(wait_ms + (spoken - started) * 1000, 1)})
-    return turns
+    assistant.reset()
+    started = time.perf_counter()
+    heard = await asyncio.to_thread(models.stt.transcribe, clip, hint)
+    transcribed = time.perf_counter()
+    result = await assistant.turn(strip_wake_words(heard.text, wake_phrase))
+    answered = time.perf_counter()
+    await asyncio.to_thread(models.tts.synthesize, result.reply or "Okay.")
+    spoken = time.perf_counter()
+    wait_ms = end_silence_s * 1000.0
+    log.info("naive chain %r: first audio %.0f ms from the last word", heard.text, wait_ms + (spoken - started) * 1000)
+    return {"endpoint": round(wait_ms, 1), "transcript": round(wait_ms + (transcribed - started) * 1000, 1),
+            "reply": round(wait_ms + (answered - started) * 1000, 1),
+            "first_audio": round(wait_ms + (spoken - started) * 1000, 1)}
 
 
 async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels | None = None,
@@ -270,25 +269,29 @@ async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels |
     robot = RobotConfig(address=f"sim://?speed={sim_speed:g}")
     naive_turns: list[dict[str, float]] = []
     try:
-        async with connect_robot(robot) as link:
+        # the naive chain has its own robot, so each command finds both robots in the same state;
+        # its turns alternate with the pipeline's, so both see the same load from other jobs
+        async with connect_robot(robot) as link, connect_robot(robot) as naive_link:
             await local.warm_up(SYSTEM_PROMPT, await link.tools.specs())
             sim = link.sim
             room = SimulatedRoom()  # real time: stream time and the wall clock advance together
             pipeline = VoicePipeline(models, local, link.tools, source=room.mic, sink=room.speaker,
                                      reference=room.reference, observer=observe,
                                      moving=(lambda: sim.state.moving) if sim is not None else None)
+            naive_assistant = Assistant(local, naive_link.tools)
+
+            async def naive_after(clip: AudioChunk) -> None:
+                cfg = pipeline.config
+                naive_turns.append(await naive_turn(models, naive_assistant, clip, hint=pipeline.hint,
+                                                    end_silence_s=cfg.endpointer.end_silence_s,
+                                                    wake_phrase=cfg.wake_phrase))
+
             started = time.perf_counter()
             async with asyncio.TaskGroup() as group:
                 group.create_task(pipeline.run(finish_timeout_s=60.0))
                 group.create_task(_run_turns(pipeline, room, [audio[t] for t in said], finished, reset=True,
-                                             timeout=180.0))
+                                             timeout=180.0, after=naive_after if naive else None))
             wall = time.perf_counter() - started
-            cfg, hint = pipeline.config, pipeline.hint
-        if naive:
-            async with connect_robot(robot) as link:  # a fresh robot, in the state the pipeline's began in
-                naive_turns = await naive_chain(models, Assistant(local, link.tools), [audio[t] for t in said],
-                                                end_silence_s=cfg.endpointer.end_silence_s,
-                                                wake_phrase=cfg.wake_phrase, hint=hint)
     finally:
         await local.aclose()
     from_decision = [dict(f.latency_ms) for f in finished]
