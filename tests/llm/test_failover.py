@@ -200,3 +200,33 @@ def test_chain_configuration_errors() -> None:
 def test_backoff_grows_and_is_capped() -> None:
     backoff = Backoff(initial_s=1, factor=3, max_s=5)
     assert [backoff.delay(n) for n in range(5)] == [0, 1, 3, 5, 5]
+
+
+class PrefillingBackend(OpenAICompatBackend):
+    """A backend that can prefill (as the embedded model can), recording what it was given."""
+
+    def __init__(self, name: str, url: str) -> None:
+        super().__init__(url, "m", name=name, deadlines=FAST)
+        self.prefilled: list[tuple[list[ChatMessage], bool]] = []
+
+    async def prefill(self, messages: list[ChatMessage], tools: list[ToolSpec], *, decode: bool = True) -> str:
+        self.prefilled.append((list(messages), decode))
+        return "prefilled"
+
+
+async def test_prefill_goes_to_the_backend_the_next_turn_tries_first(
+    stack: AsyncExitStack, tools: list[ToolSpec]
+) -> None:
+    from robovoice.voice.speculate import Prefilling
+
+    server = await stack.enter_async_context(FakeOpenAIServer([TextReply("Hi.")]))
+    local, remote = PrefillingBackend("local", server.base_url), http("remote", server.base_url)
+    stack.push_async_callback(local.aclose)
+    clock = Clock()
+    llm = await chain(stack, [local, remote], clock)
+    assert isinstance(llm, Prefilling)  # what the voice pipeline's speculator checks
+    assert await llm.prefill(USER, tools, decode=False) == "prefilled"
+    assert local.prefilled == [(USER, False)] and not server.requests  # nothing was sent anywhere
+    # with a backend that cannot prefill first in line, nothing is prefilled
+    assert await (await chain(stack, [remote, local], clock)).prefill(USER, tools) is None
+    assert len(local.prefilled) == 1

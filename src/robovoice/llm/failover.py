@@ -158,6 +158,19 @@ class FailoverBackend:
             ready.append(soonest)
         return ready
 
+    async def prefill(
+        self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec], *, decode: bool = True
+    ) -> object:
+        """A speculative prefill (`voice.speculate`) goes to the backend the next turn will try
+        first, when that one can prefill (the embedded model); None otherwise. The chain wraps
+        even a single backend, so without this the voice pipeline never prefilled."""
+        candidates = self._candidates(has_audio(messages), {})
+        prefill = getattr(candidates[0], "prefill", None) if candidates else None
+        if prefill is None:
+            return None
+        result: object = await prefill(messages, tools, decode=decode)
+        return result
+
     def _first_event_bound(self, backend: LLMBackend) -> float | None:
         """The chain's own bound on a backend's first event: a safety net behind the backend's
         deadlines, never shorter than they are (a CPU server may think for a minute), so the
