@@ -44,8 +44,7 @@ async def _run(*args: str, stdin: str = "", timeout: float = 240) -> tuple[int, 
 
 
 async def test_chat_through_a_server_shows_calls_and_answers() -> None:
-    script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
-              TextReply("I'm in the kitchen now.")]
+    script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),))]
     async with FakeOpenAIServer(script) as server:
         code, out, err = await _run("chat", "--robot", "sim", "--sim-speed", "50",
                                     "--llm", server.base_url, "--model", server.model,
@@ -53,7 +52,7 @@ async def test_chat_through_a_server_shows_calls_and_answers() -> None:
     assert code == 0, err
     assert "→ navigate_to(target='kitchen')" in out
     assert "← navigate_to ok" in out and '"arrived": "kitchen"' in out
-    assert "robot> I'm in the kitchen now." in out
+    assert "robot> I am at the kitchen now." in out  # the drive's success phrase
 
 
 async def test_chat_with_nothing_reachable_says_the_fallback_within_the_deadline() -> None:
@@ -111,14 +110,13 @@ async def test_chat_with_a_robot_at_an_http_address() -> None:
                                      "--no-audit-log"))
     try:
         url = (await serve.async_wait_for_line("robovoice serve: ready: ", bound=30)).split()[3]
-        script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)),
-                                       TextReply("The projector is on.")]
+        script: list[ScriptedReply] = [ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),))]
         async with FakeOpenAIServer(script) as server:
             code, out, err = await _run("chat", "--robot", url, "--llm", server.base_url, "--model", server.model,
                                         stdin="switch the projector on\n")
         assert code == 0, err
         assert "→ set_projector_power(on=True)" in out and "← set_projector_power ok" in out
-        assert "robot> The projector is on." in out
+        assert "robot> The projector is now on." in out
     finally:
         assert serve.stop() == 0, serve.output()
 

@@ -39,7 +39,6 @@ async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     script: list[ScriptedReply] = [
         call("navigate_to", target="kitchen"),
         call("set_projector_power", on=True),
-        TextReply("I'm in the kitchen and the projector is on."),
     ]
     async with connect_robot(SIM) as robot, FakeOpenAIServer(script) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
@@ -52,5 +51,6 @@ async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     # first the model was told to take one thing at a time, after the drive what comes next
     assert server.requests[0].last_user_text == "One thing at a time, in order. First: Go to the kitchen."
     assert server.requests[1].last_user_text == "Now do the next thing I asked: switch the projector on."
-    assert server.requests[2].last_user_text == "Now do the next thing I asked: switch the projector on."
-    assert len(server.requests) == 3
+    # each action's own phrase said what happened: no model step only to word it
+    assert result.reply == "I am at the kitchen now. The projector is now on."
+    assert len(server.requests) == 2

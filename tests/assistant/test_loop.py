@@ -57,7 +57,8 @@ async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
         events: list[TurnEvent] = []
         async with FakeOpenAIServer(script) as server:
             assistant = Assistant(_backend(server), robot.tools, observer=events.append)
-            result = await assistant.turn("Please go to the kitchen")
+            # a question beside the drive: the model words the answer (not the drive's phrase)
+            result = await assistant.turn("Please go to the kitchen. Is it far?")
             requests = list(server.requests)
         assert [(c.name, c.arguments) for c in result.calls] == [("navigate_to", {"target": "kitchen"})]
         assert robot.sim is not None and robot.sim.state.nearest_place == "kitchen"
@@ -67,9 +68,9 @@ async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
                              "Anything else?"]
         # The model got every sim tool, and the tool result went back paired with its call id.
         assert "navigate_to" in requests[0].tool_names and len(requests[0].tool_names) == 12
-        tool_message = requests[1].messages[-1]
+        tool_message = requests[1].messages[-2]  # then "Now do the next thing I asked: Is it far."
         assert tool_message["role"] == "tool" and "kitchen" in tool_message["content"]
-        assert tool_message["tool_call_id"] == requests[1].messages[-2]["tool_calls"][0]["id"]
+        assert tool_message["tool_call_id"] == requests[1].messages[-3]["tool_calls"][0]["id"]
         marks = result.metrics.as_dict()
         assert marks["first_token"] <= marks["first_sentence"] <= marks["finished"]
         assert "tool_call:navigate_to" in marks and marks["tools_ms"] > 0

@@ -20,11 +20,14 @@ async def test_voice_sections_reach_the_client_in_the_tools_meta() -> None:
         await robot.tools.specs()
         voice = robot.tools.voice()
     assert meta["navigate_to"] == {"role": "motion", "say": {"start": "On my way to the {target}.",
-                                                             "progress": "Still on my way, {message}."}}
-    assert meta["stop_robot"] == {"role": "stop", "say": {}}
+                                                             "progress": "Still on my way, {message}.",
+                                                             "success": "I am at the {arrived} now."}}
+    assert meta["stop_robot"] == {"role": "stop", "say": {"success": "{was_moving:Stopped.|I am standing still.}"}}
     assert meta["get_robot_pose"] == {"role": "pose", "say": {}}
-    assert meta["set_projector_power"] is None
-    assert {name: v.role for name, v in voice.items()} == {
+    projector = "The projector {changed:is now|was already} {on:on|off}."
+    assert meta["set_projector_power"] == {"say": {"success": projector}}
+    assert meta["get_battery_state"] is None
+    assert {name: v.role for name, v in voice.items() if v.role} == {
         "navigate_to": "motion", "return_to_dock": "motion", "stop_robot": "stop", "get_robot_pose": "pose"}
 
 

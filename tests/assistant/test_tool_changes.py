@@ -29,7 +29,6 @@ async def test_a_node_joining_mid_conversation_gives_the_next_turn_its_tool(
     script: list[ScriptedReply] = [
         TextReply("I have no projector I could switch on."),
         ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)),
-        TextReply("The projector is on."),
     ]
     caplog.set_level(logging.INFO, logger="robovoice.assistant.robot_tools")
     async with connect_robot(WITHOUT_PROJECTOR) as robot, FakeOpenAIServer(script) as server:
@@ -53,6 +52,7 @@ async def test_a_node_joining_mid_conversation_gives_the_next_turn_its_tool(
     assert [(c.name, c.arguments) for c in second.calls] == [("set_projector_power", {"on": True})]
     assert not second.outcomes[0].is_error, second.outcomes[0].text
     assert "set_projector_power" in server.requests[1].tool_names
-    assert len(server.requests) == 3  # turn 1; turn 2: the call, then the answer with its result
+    assert len(server.requests) == 2  # turn 1; turn 2: the call (its success phrase is the answer)
+    assert second.reply == "The projector is now on."
     # The conversation went on: the second turn's request still holds the first exchange.
     assert server.requests[1].messages[1]["content"] == "Switch on the projector, please."

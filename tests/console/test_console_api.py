@@ -15,12 +15,11 @@ from websockets.typing import Origin
 
 from robovoice.console.serve import check_console_bind
 from robovoice.errors import ConfigError
-from robovoice.llm.fake_server import ScriptedCall, ScriptedReply, TextReply, ToolCallReply
+from robovoice.llm.fake_server import ScriptedCall, ScriptedReply, ToolCallReply
 
 from .console_testkit import BOUND_S, next_message, running_console
 
-GO_TO_KITCHEN: list[ScriptedReply] = [ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
-                 TextReply("I'm in the kitchen now.")]
+GO_TO_KITCHEN: list[ScriptedReply] = [ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),))]
 
 
 def _kinds(events: list[dict[str, Any]]) -> list[str]:
@@ -38,7 +37,7 @@ async def test_say_returns_the_turn_and_the_websocket_streams_it_in_order() -> N
             assert response.status_code == 200, response.text
             turn = response.json()
             assert turn["calls"] == [{"name": "navigate_to", "arguments": {"target": "kitchen"}}]
-            assert turn["reply"] == "I'm in the kitchen now."
+            assert turn["reply"] == "I am at the kitchen now."  # the drive's success phrase
             kinds = _kinds(turn["events"])
             assert kinds[0] == "TurnStarted" and kinds[-1] == "TurnFinished"
             assert kinds.index("ToolCalled") < kinds.index("ToolReturned") < kinds.index("SentenceReady")
