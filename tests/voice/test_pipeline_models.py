@@ -57,7 +57,7 @@ async def test_wake_word_then_command(voice_models: VoiceModels, router: FakeOpe
     assert len(s.log.of(WakeWordHeard)) == 1
     assert "projector" in s.log.of(TranscriptReady)[0].text.lower()
     assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
-    assert [e.text for e in s.log.of(SentenceSpoken)] == ["Done: set projector power."]
+    assert [e.text for e in s.log.of(SentenceSpoken)] == ["The projector is now on."]  # its success phrase
 
 
 @pytest.mark.parametrize("name", ["eval/nowake-02", "audio/cmd_piper_kitchen", "audio/tv_piper_news_babble10"])
@@ -235,3 +235,15 @@ async def test_audio_native_backend_hears_the_utterance_itself(voice_models: Voi
         seconds = wf.getnframes() / wf.getframerate()
     speech = spec["speech_end_s"] - spec["speech_start_s"]
     assert speech - 0.1 <= seconds <= speech + 0.3 + 0.2 + 0.2  # + pre-roll, post-roll, VAD frame rounding
+
+
+def test_loaded_voice_says_its_fixed_phrases_from_memory(voice_models: VoiceModels) -> None:
+    from robovoice.audio.tts_cache import CachedSynthesizer
+    from robovoice.voice.models import fixed_phrases
+
+    tts = voice_models.tts
+    assert isinstance(tts, CachedSynthesizer)
+    hits = tts.hits
+    for phrase in fixed_phrases():  # synthesised while the models loaded
+        assert len(tts.synthesize(phrase).samples) > 0
+    assert tts.hits == hits + len(fixed_phrases())

@@ -15,7 +15,7 @@ import asyncio
 import re
 import time
 from collections.abc import Awaitable, Callable
-from typing import Any, Literal
+from typing import Literal
 
 from robovoice.assistant.events import SentenceReady, ToolCalled, ToolProgressed, ToolReturned, TurnEvent
 from robovoice.assistant.loop import Assistant, TurnResult
@@ -210,15 +210,13 @@ class CommandTurn:
                 line = c.narrator.on_progress(name, progress, total, message, now,
                                               called.arguments if called is not None else None)
                 self._say(line, "progress")
-            case ToolReturned(call_id=call_id, name=name, is_error=failed, result=body):
+            case ToolReturned(call_id=call_id, is_error=failed):
                 self._moves.discard(call_id)
                 c.motion.finished(call_id)
                 ack = self._acks.pop(call_id, None)
                 if failed:
                     c.speech.withdraw(ack)  # "On my way ..." not yet said: the tool failed at once
-                called = self._calls.get(call_id)
-                given: dict[str, Any] = called.arguments if called is not None else {}
-                self._say(c.narrator.on_result(name, given, failed, body), "result")
+                # its success/failure phrase, if any, is the turn's answer (assistant.phrase)
             case _:
                 pass
         await c.emit(event)

@@ -15,6 +15,17 @@ from robovoice.audio.wake import WakeWordDetector
 log = logging.getLogger(__name__)
 
 
+def fixed_phrases() -> tuple[str, ...]:
+    """What the robot says in the same words every time, by default (a config may change the
+    stop replies; those are then synthesised at first use)."""
+    from robovoice.config import VoiceConfig
+    from robovoice.llm.failover import FALLBACK_MESSAGE
+    from robovoice.voice.confidence import DIDNT_CATCH
+
+    voice = VoiceConfig()
+    return (voice.stop_reply, voice.stop_failed_reply, voice.one_moment, DIDNT_CATCH, FALLBACK_MESSAGE)
+
+
 @dataclass(frozen=True, slots=True)
 class VoiceModels:
     """`stt` may be None when the backend takes audio and no local stop check is wanted."""
@@ -35,6 +46,7 @@ def load_voice_models(
     with ``stt="none"``) and Piper, four at a time."""
     from robovoice.audio.stt import MoonshineTranscriber, WhisperTranscriber
     from robovoice.audio.tts import PiperSynthesizer
+    from robovoice.audio.tts_cache import CachedSynthesizer
     from robovoice.audio.vad import SileroVAD
     from robovoice.audio.wake import OpenWakeWordDetector
 
@@ -49,11 +61,14 @@ def load_voice_models(
             transcriber = pool.submit(lambda: MoonshineTranscriber(threads=stt_threads))
         elif stt == "whisper":
             transcriber = pool.submit(lambda: WhisperTranscriber())
+        speech = CachedSynthesizer(tts.result())
+        # the phrases said again and again, synthesised now so that their first use is immediate
+        speech.warm(fixed_phrases())
         models = VoiceModels(
             wake=wake.result(),
             vad=vad.result(),
             stt=transcriber.result() if transcriber is not None else None,
-            tts=tts.result(),
+            tts=speech,
             playback_wake=playback_wake.result(),
         )
     log.info("voice models loaded in %.1f s", time.perf_counter() - started)

@@ -90,10 +90,3 @@ class ProgressNarrator:
         if line is not None:
             self._last_spoken[name] = now
         return line
-
-    def on_result(
-        self, name: str, arguments: Mapping[str, Any], failed: bool, result: Mapping[str, Any] | None
-    ) -> str | None:
-        """Nothing: a tool's success or failure phrase is the assistant's answer (`assistant.phrase`),
-        spoken as a reply sentence. Kept until voice/command.py no longer asks (it would be said twice)."""
-        return None
