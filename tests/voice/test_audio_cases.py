@@ -6,9 +6,12 @@ from __future__ import annotations
 import wave
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from robovoice.assistant.connect import connect_robot
+from robovoice.audio.format import as_int16
+from robovoice.audio.wav import read_wav
 from robovoice.config import RobotConfig
 from robovoice.eval.cases import load_cases
 from robovoice.eval.runner import run_eval
@@ -16,6 +19,7 @@ from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.voice.evaluation import open_clip_runner
 from robovoice.voice.models import VoiceModels
+from robovoice.voice.recording import reply_latency
 
 from .voice_kit import DATA, keyword_router
 
@@ -45,13 +49,13 @@ def test_the_audio_set_is_complete() -> None:
 
 @pytest.mark.integration
 @pytest.mark.timeout(300)
-async def test_audio_cases_through_the_pipeline(voice_models: VoiceModels) -> None:
+async def test_audio_cases_through_the_pipeline(voice_models: VoiceModels, tmp_path: Path) -> None:
     wanted = ["wake-projector-on-1", "nowake-02", "wake-stop-2", "nowake-stop-2"]
     cases = [c for c in load_cases(CASES) if c.id in wanted]
     async with FakeOpenAIServer(default=CallbackReply(keyword_router)) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
         try:
-            async with open_clip_runner(models=voice_models) as audio:
+            async with open_clip_runner(models=voice_models, record_dir=tmp_path) as audio:  # eval --record
                 robot = RobotConfig(address="sim://?speed=2")
                 report = await run_eval(cases, backend, lambda: connect_robot(robot), audio=audio)
         finally:
@@ -63,6 +67,19 @@ async def test_audio_cases_through_the_pipeline(voice_models: VoiceModels) -> No
     assert by_id["wake-stop-2"]["calls"] == [{"tool": "stop_robot", "args": {}, "error": None, "resolved": {}}]
     assert by_id["wake-stop-2"]["stops"] == 1
     assert by_id["nowake-stop-2"]["stops"] == 1
-    # the stops never asked the model: one request for the projector and its tool result only
-    assert [r.last_user_text for r in server.requests] == ["turn on the projector."] * 2
+    # the stops never asked the model, and the projector's result was answered by its success
+    # phrase: one request in all
+    assert [r.last_user_text for r in server.requests] == ["turn on the projector."]
     assert "first_audio" in summary["stages"] and "transcript" in summary["stages"]
+    # one session recording per case, channel 1 the clip itself from its first sample
+    assert sorted(p.stem for p in tmp_path.glob("*.wav")) == sorted(wanted)
+    for case in cases:
+        assert case.audio is not None
+        session, clip_audio = read_wav(tmp_path / f"{case.id}.wav"), read_wav(case.audio)
+        assert session.format.channels == 2
+        heard = as_int16(session.samples)[: len(clip_audio.samples), 0]
+        assert np.abs(heard.astype(np.int32) - as_int16(clip_audio.samples).astype(np.int32)).max() <= 1, case.id
+    answered = read_wav(tmp_path / "wake-projector-on-1.wav")
+    latency = reply_latency(answered, robot_dbfs=-100)
+    assert latency is not None and 0.0 < latency < 30.0
+    assert reply_latency(read_wav(tmp_path / "nowake-02.wav")) is None  # the robot said nothing

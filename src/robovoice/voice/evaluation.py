@@ -17,6 +17,7 @@ import logging
 from collections.abc import AsyncIterator
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
+from pathlib import Path
 
 from robovoice.assistant.robot_tools import RobotTools
 from robovoice.audio.wav import read_wav
@@ -42,11 +43,13 @@ class VoiceClipRunner:
     config: PipelineConfig
     speed: float = 1.0
     turn_timeout_s: float = 180.0
+    record_dir: Path | None = None  # each case's session (voice.recording) goes here as <id>.wav
 
     async def run_clip(self, case: Case, backend: LLMBackend, tools: RobotTools) -> ClipOutcome:
         assert case.audio is not None
         audio = read_wav(case.audio)
-        room = SimulatedRoom(speed=self.speed)
+        room = SimulatedRoom(speed=self.speed, record=self.record_dir is not None)
+        speech = room.say(audio, gap_s=0.3)
         heard: list[PipelineEvent] = []
         pipeline = VoicePipeline(self.models, backend, tools, source=room.mic,
                                  sink=room.speaker, reference=room.reference, config=self.config,
@@ -54,7 +57,6 @@ class VoiceClipRunner:
 
         async def speak() -> None:
             try:
-                speech = room.say(audio, gap_s=0.3)
                 await speech.finished(timeout=audio.duration_s / self.speed + 30.0)
                 await room.until(room.now + self.config.endpointer.end_silence_s + 0.3)
                 if not await pipeline.wait_idle(self.turn_timeout_s):
@@ -65,6 +67,10 @@ class VoiceClipRunner:
         async with asyncio.TaskGroup() as group:
             group.create_task(pipeline.run(finish_timeout_s=10.0), name=f"eval-{case.id}-pipeline")
             group.create_task(speak(), name=f"eval-{case.id}-speak")
+        if self.record_dir is not None:
+            from robovoice.voice.recording import write_session
+
+            write_session(self.record_dir / f"{case.id}.wav", room, origin=speech.start)
         return ClipOutcome(
             turns=tuple(pipeline.results),
             wake_words=sum(isinstance(e, WakeWordHeard) for e in heard),
@@ -77,10 +83,11 @@ class VoiceClipRunner:
 
 @asynccontextmanager
 async def open_clip_runner(
-    config: Config | None = None, *, models: VoiceModels | None = None, speed: float = 1.0
+    config: Config | None = None, *, models: VoiceModels | None = None, speed: float = 1.0,
+    record_dir: Path | None = None,
 ) -> AsyncIterator[VoiceClipRunner]:
     """Load the voice models (unless given) and yield the clip runner for audio cases."""
     settings = (config or Config()).voice
     if models is None:
         models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model, stt=settings.stt)
-    yield VoiceClipRunner(models, PipelineConfig.from_config(settings), speed)
+    yield VoiceClipRunner(models, PipelineConfig.from_config(settings), speed, record_dir=record_dir)
