@@ -31,8 +31,7 @@ async def test_chat_against_llama_cpp_python_chatml_function_calling_quirks() ->
     call grammar, so its content is ``functions.get_battery_state:``; no usage."""
     quirks = Quirks(no_streamed_tool_calls=True, keep_alives=True, no_usage=True)
     script: list[ScriptedReply] = [
-        ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),
-        TextReply("I'm in the kitchen now."),
+        ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),)),  # answered by its success phrase
         TextReply("functions.get_battery_state:"),
         TextReply("My battery is at 80 percent."),
     ]
@@ -41,9 +40,9 @@ async def test_chat_against_llama_cpp_python_chatml_function_calling_quirks() ->
     assert code == 0, err
     assert "→ navigate_to(target='kitchen')" in out and '"arrived": "kitchen"' in out
     assert "→ get_battery_state()" in out and "← get_battery_state ok" in out
-    assert robot_lines(out) == ["robot> I'm in the kitchen now.", "robot> My battery is at 80 percent."]
+    assert robot_lines(out) == ["robot> I am at the kitchen now.", "robot> My battery is at 80 percent."]
     assert "functions." not in out and "Traceback" not in err
-    assert [r.body["stream"] for r in server.requests] == [True, False, False, False, False]
+    assert [r.body["stream"] for r in server.requests] == [True, False, False, False]
 
 
 async def test_chat_against_a_hermes_server_that_writes_calls_as_tool_call_tags() -> None:
@@ -52,12 +51,20 @@ async def test_chat_against_a_hermes_server_that_writes_calls_as_tool_call_tags(
     quirks = Quirks(tool_calls_as="hermes", unknown_fields=True, busy_status=503, busy_retry_after="0.2")
     script: list[ScriptedReply] = [
         ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),), text="On my way to the kitchen."),
-        TextReply("I'm in the kitchen now."),
     ]
     async with FakeOpenAIServer(script, quirks=quirks) as server:
         code, out, err = await chat(server, "please drive to the kitchen\n")
     assert code == 0, err
     assert "→ navigate_to(target='kitchen')" in out and '"arrived": "kitchen"' in out
-    assert robot_lines(out) == ["robot> On my way to the kitchen.", "robot> I'm in the kitchen now."]
+    assert robot_lines(out) == ["robot> On my way to the kitchen.", "robot> I am at the kitchen now."]
     assert "tool_call" not in out and '"name"' not in out and "Traceback" not in err
-    assert server.busy_sent == 1 and len(server.requests) == 3  # the busy answer, then two model steps
+    assert server.busy_sent == 1 and len(server.requests) == 2  # the busy answer, then one model step
+
+
+async def test_chat_never_prints_control_tokens_a_server_lets_through() -> None:
+    """A server that does not strip the chat template's end marker: the sentence is shown, the
+    marker never (the speech guard at the chat printer)."""
+    async with FakeOpenAIServer([TextReply("Hello there.<|im_end|>")]) as server:
+        code, out, err = await chat(server, "hello\n")
+    assert code == 0, err
+    assert robot_lines(out) == ["robot> Hello there."] and "<|" not in out

@@ -18,7 +18,6 @@ from robovoice.llm.fake_server import (
     Quirks,
     ScriptedCall,
     ScriptedReply,
-    TextReply,
     ToolCallReply,
 )
 from robovoice.llm.openai_compat import OpenAICompatBackend
@@ -39,7 +38,7 @@ LEAKS = [
     '{"arguments": {"target": "kitchen"}, "name": "navigate_to"}',
     '[TOOL_CALLS][{"name": "navigate_to", "arguments": {}}]',
     "<|im_start|>assistant",
-    "All done.<|im_end|>",
+    "<|im_end|> All done.",
     "<|python_tag|>navigate_to(target='kitchen')",
     "<function=navigate_to>{\"target\": \"kitchen\"}</function>",
     "<tool_response>ok</tool_response>",
@@ -70,6 +69,12 @@ def test_ordinary_sentences_pass_unchanged(sentence: str) -> None:
     assert shown_reply(sentence) == sentence
 
 
+@pytest.mark.parametrize("sentence", ["All done.<|im_end|>", "All done. <|eot_id|>", "All done.<end_of_turn>\n"])
+def test_an_end_of_turn_marker_at_the_end_is_cut_off_not_the_sentence(sentence: str) -> None:
+    assert speakable(sentence) == "All done." and shown_reply(sentence) == "All done."
+    assert speakable("<|im_end|>") is None and shown_reply("<|im_end|>") is None
+
+
 def test_the_terminal_filter_logs_what_it_drops(caplog: pytest.LogCaptureFixture) -> None:
     with caplog.at_level(logging.WARNING, logger="robovoice.commands.text"):
         assert shown_reply("functions.get_battery_state:") is None
@@ -79,7 +84,7 @@ def test_the_terminal_filter_logs_what_it_drops(caplog: pytest.LogCaptureFixture
 class LeakyBackend:
     """A model that writes its tool-call syntax as words, in forms no backend turns into a call
     (what reached the user in issue 16), then one real sentence. (A sentence that carries a
-    control token is dropped whole: "All done.<|im_end|>" in LEAKS.)"""
+    control token is dropped whole, unless it is the end-of-turn marker at its end.)"""
 
     name = "leaky"
     accepts_audio = False
@@ -135,8 +140,7 @@ async def test_the_voice_pipeline_acts_on_calls_a_server_wrote_as_text(
     """Through the real HTTP wire: a Qwen/Hermes-style server with no finish reason."""
     models, tts = recording_models(fakes)
     switch_on = ScriptedCall("set_projector_power", {"on": True})
-    script: list[ScriptedReply] = [ToolCallReply((switch_on,), text="Switching it on."),
-                                   TextReply("The projector is on now.")]
+    script: list[ScriptedReply] = [ToolCallReply((switch_on,), text="Switching it on.")]
     async with FakeOpenAIServer(script, quirks=Quirks(tool_calls_as="hermes", no_finish_reason=True)) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
         transcriber.text = "Hey Jarvis, turn on the projector."
@@ -150,6 +154,6 @@ async def test_the_voice_pipeline_acts_on_calls_a_server_wrote_as_text(
             await backend.aclose()
     assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
     spoken = [e.text for e in s.log.of(SentenceSpoken)]
-    assert spoken[-1] == "The projector is on now."
+    assert spoken[-1] == "The projector is now on."  # its success phrase: no second model step
     assert_clean(spoken)
     assert_clean(tts.texts)

@@ -23,6 +23,16 @@ _TOOL_SYNTAX = re.compile(
 )
 
 
+# The end-of-turn marker a server forgot to strip ends an answer that is otherwise fine: it is cut
+# off, not a reason to drop the answer's last sentence.
+_END_MARKERS = re.compile(r"(?:\s*(?:<\|(?:im_end|eot_id|endoftext|end|eom_id)\|>|<end_of_turn>|</s>))+\s*$")
+
+
+def without_end_marker(sentence: str) -> str:
+    """`sentence` without the chat template's end-of-turn markers at its end."""
+    return _END_MARKERS.sub("", sentence)
+
+
 def tool_syntax_in(sentence: str) -> str | None:
     """The first piece of tool-call syntax in `sentence`, or None when there is none."""
     found = _TOOL_SYNTAX.search(sentence)
@@ -30,5 +40,7 @@ def tool_syntax_in(sentence: str) -> str | None:
 
 
 def speakable(sentence: str) -> str | None:
-    """`sentence` unchanged, or None when it carries tool-call syntax and must not be spoken or shown."""
-    return None if tool_syntax_in(sentence) is not None else sentence
+    """`sentence` (without an end-of-turn marker at its end), or None when it carries tool-call
+    syntax, or nothing else, and must not be spoken or shown."""
+    sentence = without_end_marker(sentence)
+    return None if tool_syntax_in(sentence) is not None or not sentence.strip() else sentence

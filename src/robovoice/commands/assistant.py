@@ -35,7 +35,7 @@ from robovoice.commands.common import (
     warm_up,
 )
 from robovoice.commands.signals import CancelOnSignals
-from robovoice.commands.text import one_line
+from robovoice.commands.text import one_line, shown_reply
 from robovoice.errors import ConfigError
 from robovoice.eval.cases import load_cases
 from robovoice.eval.runner import CaseResult, run_eval
@@ -60,6 +60,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     ev.add_argument("--limit", type=positive_int, help="run only the first N cases")
     ev.add_argument("--quiet", action="store_true", help="no per-case lines on stderr")
     ev.add_argument("--only", action="append", metavar="ID", help="run only these case ids")
+    ev.add_argument("--record", type=Path, metavar="DIR",
+                    help="audio cases: write each case's session as DIR/<id>.wav, a stereo WAV aligned with the clip "
+                         "(channel 1 the microphone, channel 2 the robot; docs/voice.md, 'Recording a session')")
     ev.set_defaults(run=run_eval_command)
 
 
@@ -83,8 +86,8 @@ class ChatPrinter:
                 if now - self._last_progress.get(name, 0.0) >= 1.0:
                     self._last_progress[name] = now
                     print(f"  … {message}", file=self.out, flush=True)
-            case SentenceReady(text=text):
-                print(f"robot> {text}", file=self.out, flush=True)
+            case SentenceReady(text=text) if (shown := shown_reply(text)) is not None:
+                print(f"robot> {shown}", file=self.out, flush=True)
             case BackendFailed(reason=reason):
                 print(f"  ! no language model answered: {one_line(reason, 300)}", file=self.out, flush=True)
             case _:
@@ -172,6 +175,8 @@ async def _eval(args: argparse.Namespace) -> int:
         cases = [c for c in cases if c.id in set(args.only)]
     if args.limit:
         cases = cases[: args.limit]
+    if args.record is not None and not args.record.is_dir():
+        raise ConfigError(f"--record {args.record}: no such folder; create it first")
     config = config_from_args(args)
     robot = robot_config_from_args(args, config)
     backend = backend_from_args(args, config)
@@ -182,7 +187,7 @@ async def _eval(args: argparse.Namespace) -> int:
         if any(c.audio is not None for c in cases):
             from robovoice.voice.evaluation import open_clip_runner  # needs robovoice[voice]
 
-            async with open_clip_runner(config) as audio:
+            async with open_clip_runner(config, record_dir=args.record) as audio:
                 report = await run_eval(cases, backend, lambda: connect_robot(robot), audio=audio,
                                         on_result=None if args.quiet else _print_case)
         else:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import logging
 
-from robovoice.assistant.speech_guard import tool_syntax_in
+from robovoice.assistant.speech_guard import tool_syntax_in, without_end_marker
 
 log = logging.getLogger(__name__)
 
@@ -19,7 +19,8 @@ def one_line(text: str, limit: int = 110) -> str:
 def shown_reply(sentence: str) -> str | None:
     """An assistant sentence as the terminal shows it, or None (logged) when it carries tool-call
     syntax: raw ``functions.x:`` or ``<tool_call>`` text is never printed as the robot's words."""
+    sentence = without_end_marker(sentence)
     if (syntax := tool_syntax_in(sentence)) is not None:
         log.warning("not showing a sentence with tool-call syntax %r: %r", syntax, sentence[:200])
         return None
-    return sentence
+    return sentence if sentence.strip() else None

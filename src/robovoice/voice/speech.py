@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from robovoice.assistant.events import notify
 from robovoice.assistant.metrics import TurnMetrics
-from robovoice.assistant.speech_guard import tool_syntax_in
+from robovoice.assistant.speech_guard import tool_syntax_in, without_end_marker
 from robovoice.audio.format import AudioChunk, AudioFormat, concat, convert
 from robovoice.audio.streams import AudioSink
 from robovoice.audio.tts import Synthesizer
@@ -94,7 +94,7 @@ class SpeechOutput:
     ) -> int | None:
         """Queue `text`; its handle (for `withdraw`), None when there is nothing to say (or it
         carries tool-call syntax, which is never spoken: `speech_guard`)."""
-        text = text.strip()
+        text = without_end_marker(text).strip()
         if not text:
             return None
         if (syntax := tool_syntax_in(text)) is not None:
