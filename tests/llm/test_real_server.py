@@ -128,16 +128,8 @@ def _robot_lines(out: str) -> list[str]:
 # Failures seen on these servers and who they are reported to (non-strict: each still runs, and
 # turns XPASS once fixed). Seen 23 Nov 2026, docs/llm.md "Recipes".
 KNOWN = {
-    ("gguf-template", "calls"): "the GGUF template's calls come back as {{\"name\": ..., \"arguments\": {...}}}}} "
-                                "(doubled braces, Qwen's <tool_call> tags stripped as special tokens): not parsed as "
-                                "calls yet (llm/text_calls.py, issue 16)",
     ("gguf-template", "question"): "under the GGUF template the 1.5B model answers the battery question from the "
                                    "tool's description instead of calling it (no tool_bias on a server)",
-    ("chatml-function-calling", "question"): "at load ~28 its two requests for the first step (streamed, then "
-                                             "again without streaming) overran the 60 s one-call bound that "
-                                             "commands/common.py still applies instead of local-cpu's 120 s",
-    ("chatml-function-calling", "words"): "after a tool result the chatml-function-calling server's plain reply is "
-                                          "empty, so the turn ends without words",
 }
 
 
