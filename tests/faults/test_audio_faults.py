@@ -26,7 +26,7 @@ from robovoice.errors import AudioError
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.sim import SimRobot
-from robovoice.soak.device import (
+from robovoice.voice.device import (
     BACK_MESSAGE,
     GONE_MESSAGE,
     LOST_MESSAGE,

@@ -309,12 +309,17 @@ async def _assist_mic(args: argparse.Namespace, models: Any, backend: Any, link:
                       printer: TranscriptPrinter, config: Any) -> None:
     from robovoice.audio.devices import MicrophoneSource, SpeakerSink
     from robovoice.audio.format import MODEL_FORMAT, PIPER_FORMAT
+    from robovoice.audio.streams import AudioSource
+    from robovoice.voice.device import DeviceReaction, GuardedSource
     from robovoice.voice.echo import PlaybackReference
     from robovoice.voice.pipeline import VoicePipeline
     from robovoice.voice.playback import ReferencedSink
 
     reference = PlaybackReference()
-    mic = MicrophoneSource(MODEL_FORMAT)
+    # opened now, so that a machine with no microphone at all is told at once; a microphone that
+    # fails, stalls or is unplugged later is reopened by the guard (the robot stopped meanwhile)
+    first: list[AudioSource] = [MicrophoneSource(MODEL_FORMAT)]
+    mic = GuardedSource(lambda: first.pop() if first else MicrophoneSource(MODEL_FORMAT))
     speaker = ReferencedSink(SpeakerSink(PIPER_FORMAT), reference)
     options = _pipeline_options(link, config)
     if link.sim is not None:  # the sim's call has no audio: its remote voice counts as playback
@@ -322,6 +327,7 @@ async def _assist_mic(args: argparse.Namespace, models: Any, backend: Any, link:
         options["remote_speaking"] = lambda: sim.state.remote_speaking
     pipeline = VoicePipeline(models, backend, link.tools, source=mic, sink=speaker, reference=reference,
                              observer=printer, output_dir=args.output_dir, sink_format=PIPER_FORMAT, **options)
+    mic.on_event = DeviceReaction(pipeline)
     printer.line("listening: say \"Hey Jarvis, ...\" (Ctrl-C to end)")
     with CancelOnSignals() as stop:
         try:
@@ -329,5 +335,7 @@ async def _assist_mic(args: argparse.Namespace, models: Any, backend: Any, link:
         finally:
             await mic.aclose()
             await speaker.aclose()
+    if mic.failure:
+        printer.line(mic.failure)
     if stop.signalled:
         printer.line("stopped")
