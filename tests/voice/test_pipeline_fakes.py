@@ -116,6 +116,8 @@ async def test_spoken_stop_stops_a_drive_while_the_model_is_busy(
     heard = s.log.of(StopHeard)[0]
     assert heard.cancelled_turn == finished.turn and finished.cancelled
     assert stopped.latency_ms < 3000  # end of "stop" -> stop tool answered, the model still silent
+    # timed from the last word too: the end-of-turn silence comes on top of the decision's figure
+    assert stopped.from_last_word_ms is not None and stopped.from_last_word_ms > stopped.latency_ms
     assert [e.text for e in s.log.of(SentenceSpoken) if e.kind == "stop"] == ["Stopped."]
     assert transcriber.hints[-1] == STOP_HINT  # the stop check listens for stop words only
 

@@ -131,9 +131,10 @@ class TranscriptPrinter:
             case v.StopHeard(text=text, tool=tool):
                 how = f"{tool}, straight, no model" if tool else "the robot declares no stop tool"
                 self.line(f"  ! STOP (\"{_short(text)}\"): {how}")
-            case v.RobotStopped(ok=ok, latency_ms=ms, detail=detail):
-                self.line(f"  ■ robot {'stopped' if ok else 'DID NOT STOP'} {ms:.0f} ms after the end of speech"
-                          + ("" if ok else f": {detail}"))
+            case v.RobotStopped(ok=ok, latency_ms=ms, detail=detail, from_last_word_ms=word_ms):
+                after = f"{word_ms:.0f} ms after the last word" if word_ms is not None else \
+                    f"{ms:.0f} ms after the end of turn"
+                self.line(f"  ■ robot {'stopped' if ok else 'DID NOT STOP'} {after}" + ("" if ok else f": {detail}"))
             case v.VoiceTurnFinished(cancelled=cancelled, latency_ms=marks, result=result):
                 line = latency_line(dict(marks))
                 spoken = latency_line(result.metrics.from_speech_end()) if result is not None else ""

@@ -108,12 +108,14 @@ class StopHeard:
 
 @dataclass(frozen=True, slots=True)
 class RobotStopped:
-    """The stop tool answered (`ok` false: it reported an error, in `detail`);
-    `latency_ms` from end of speech to the stop tool's answer."""
+    """The stop tool answered (`ok` false: it reported an error, in `detail`); `latency_ms`
+    from the end-of-turn decision, `from_last_word_ms` from the user's last word (when the
+    pipeline knows the clock of its stream) to the stop tool's answer."""
 
     ok: bool
     detail: str
     latency_ms: float
+    from_last_word_ms: float | None = None
 
 
 VoiceEvent = (

@@ -145,6 +145,7 @@ class VoicePipeline:
         self.anchor = StreamAnchor(float(getattr(source, "speed", 1.0)))
         captured = getattr(source, "capture_time", None)
         self.commands.wall_time = captured if callable(captured) else self.anchor.wall_time
+        self.stopper.wall_time = self.commands.wall_time
         self.roles = VoiceRoles()
         self.commands.hint = command_hint(cfg.wake_phrase, [], cfg.vocabulary)
         self._listed: list[ToolSpec] | None = None

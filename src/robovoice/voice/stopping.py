@@ -13,6 +13,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import time
+from collections.abc import Callable
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.assistant.loop import TurnResult
@@ -23,6 +24,7 @@ from robovoice.voice.answers import AnswerRecorder
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import Emit, RobotStopped, StopHeard
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
+from robovoice.voice.lastword import last_word_end
 from robovoice.voice.listener import HeardUtterance
 from robovoice.voice.roles import VoiceRoles
 from robovoice.voice.speech import SpeechOutput
@@ -59,10 +61,12 @@ class StopController:
         self.stt = stt
         self.own_words = own_words
         self.roles = VoiceRoles()
+        self.wall_time: Callable[[float], float | None] = lambda _stream_s: None  # the pipeline's clock mapping
 
     async def check(self, utt: HeardUtterance, received: float, speculation: Transcription | None) -> None:
         """Is this short utterance (no wake word, the robot moving) a stop? Then stop."""
         metrics = TurnMetrics(start=received)
+        metrics.speech_end = self.wall_time(last_word_end(utt.audio, utt.end))  # the stop's last word
         if self.stt is None:
             await report_ignored(self.emit, self.stats, "no_stt_for_stop_check", utt)
             return
@@ -103,7 +107,8 @@ class StopController:
         metrics.tools_ms += took_ms
         metrics.mark(f"tool_result:{tool or 'none'}")
         log.info("spoken stop: %s (%s)", "robot stopped" if ok else "STOP FAILED", detail)
-        await self.emit(RobotStopped(ok, detail, metrics.marks[f"tool_result:{tool or 'none'}"]))
+        from_word = metrics.from_speech_end().get(f"tool_result:{tool or 'none'}")
+        await self.emit(RobotStopped(ok, detail, metrics.marks[f"tool_result:{tool or 'none'}"], from_word))
         phrases = self.roles.say(tool) if tool else None
         fields = result if isinstance(result, dict) else {}
         if ok:
