@@ -34,7 +34,8 @@ from robovoice.llm.fake_server import (
     TextReply,
     ToolCallReply,
 )
-from robovoice.llm.openai_compat import OpenAICompatBackend, parse_sse_line
+from robovoice.llm.openai_compat import OpenAICompatBackend
+from robovoice.llm.openai_wire import parse_sse_line
 
 FAST = Deadlines(connect_s=0.5, first_token_s=0.2, idle_s=0.2, total_s=5.0)
 USER = [ChatMessage("system", "You are a home robot."), ChatMessage("user", "Go to the kitchen")]
