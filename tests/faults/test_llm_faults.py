@@ -39,6 +39,9 @@ SIM = RobotConfig(address="sim://?speed=50")
 FAST = Deadlines(connect_s=2, first_token_s=0.5, idle_s=0.5, total_s=10)
 DRIVE = ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),))
 RECOVERED = TextReply("I'm back. What can I do?")
+# a question about the result: the model words the answer after the drive (a plain "go to the
+# kitchen" is answered by the drive's own success phrase, with no second model step to break)
+ASKED_AFTER_THE_DRIVE = "go to the kitchen. Is it tidy?"
 
 
 class Turns:
@@ -95,7 +98,7 @@ async def test_stream_closed_mid_sentence_after_a_drive(robot: RobotConnection, 
                     pacing=Pacing(cut_after_chunks=3, cut_hard=hard))
     async with FakeOpenAIServer([DRIVE, cut, RECOVERED]) as server:
         turns = Turns(robot, server)
-        first = await turns.turn("go to the kitchen")
+        first = await turns.turn(ASKED_AFTER_THE_DRIVE)
         assert [c.name for c in first.calls] == ["navigate_to"] and not first.outcomes[0].is_error
         await _expect_explained_then_recovered(turns, first)
         await turns.backend.aclose()
@@ -127,7 +130,7 @@ async def test_a_stalled_server_is_given_up_within_its_deadline(robot: RobotConn
                                                                 pacing: Pacing) -> None:
     async with FakeOpenAIServer([DRIVE, TextReply("Here I am in the kitchen.", pacing=pacing), RECOVERED]) as server:
         turns = Turns(robot, server)
-        first = await turns.turn("go to the kitchen")
+        first = await turns.turn(ASKED_AFTER_THE_DRIVE)
         assert first.metrics.as_dict()["finished"] < 5000  # bounded by the deadlines, not the 30 s stall
         await _expect_explained_then_recovered(turns, first)
         await turns.backend.aclose()

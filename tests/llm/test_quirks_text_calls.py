@@ -29,6 +29,8 @@ CASES: list[tuple[str, str, list[TextCall]]] = [
     ('Going now.\nfunctions.navigate_to:\n{"target": "kitchen"}', "Going now.\n", [DRIVE]),
     # the Qwen GGUF's own template through llama-cpp-python's server: Jinja's escaped braces, rendered literally
     ('{{"name": "navigate_to", "arguments": {"target": "kitchen"}}}}', "", [DRIVE]),
+    ('{{"name": "get_battery_state", "arguments": {}}}}\n'
+     '{{"name": "navigate_to", "arguments": {"target": "kitchen"}}}}', "", [BATTERY, DRIVE]),
 ]
 
 PLAIN = [

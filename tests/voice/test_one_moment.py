@@ -56,13 +56,14 @@ async def test_each_slow_step_of_a_turn_shares_one_one_moment_and_each_turn_has_
 ) -> None:
     """A slow call and a slow answer after it: one "One moment." in the turn; the next slow turn
     gets its own."""
-    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),), pacing=SLOW),
-                TextReply("The projector is on.", pacing=SLOW), TextReply("It is off now.", pacing=SLOW))
-    transcriber.text = "Hey Jarvis, turn on the projector."
+    # a read-only tool: the model words its result (an action's phrase would answer without it)
+    server.push(ToolCallReply((ScriptedCall("get_battery_state", {}),), pacing=SLOW),
+                TextReply("The battery is fine.", pacing=SLOW), TextReply("It is still fine.", pacing=SLOW))
+    transcriber.text = "Hey Jarvis, how much battery do you have?"
     spoken, _ = await _spoken(fakes, backend, turns=2)
     texts = [text for text, _ in spoken]
     assert texts.count("One moment.") == 2, spoken
-    assert texts.index("One moment.") < texts.index("The projector is on.") < texts.index("It is off now.")
+    assert texts.index("One moment.") < texts.index("The battery is fine.") < texts.index("It is still fine.")
 
 
 async def test_switched_off_it_is_never_said(

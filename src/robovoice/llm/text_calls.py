@@ -186,24 +186,28 @@ def _json_calls(text: str, names: frozenset[str] | None) -> Iterator[TextCall]:
 
 
 def _undoubled(text: str) -> tuple[Any, int, str] | None:
-    """A call whose braces a chat template doubled (``{{"name": …}}}}``: Jinja's escaped ``{{``
-    rendered literally, seen from the Qwen GGUF's own template): the object inside, the end of
-    it, and the text with the surplus closing braces removed; None when it is not that."""
-    stripped = text.lstrip()
-    if not stripped.startswith("{{"):
+    """Calls whose braces a chat template doubled (``{{"name": …}}}}``, one or several: Jinja's
+    escaped ``{{`` rendered literally, seen from the Qwen GGUF's own template): the objects inside
+    (a list when there are several), the end of them, and the text with the surplus braces
+    removed; None when it is not that."""
+    rest = text.lstrip()
+    found: list[Any] = []
+    while rest:
+        if not rest.startswith("{{"):
+            return None
+        inner = "{" + rest.lstrip("{")
+        if not inner[1:].lstrip().startswith('"'):
+            return None
+        try:
+            data, end = json.JSONDecoder().raw_decode(inner)
+        except json.JSONDecodeError:
+            return None
+        found.append(data)
+        rest = inner[end:].lstrip().lstrip("}").lstrip()
+    if not found:
         return None
-    inner = stripped.lstrip("{")
-    if not inner.lstrip().startswith('"'):
-        return None
-    inner = "{" + inner
-    try:
-        data, end = json.JSONDecoder().raw_decode(inner)
-    except json.JSONDecodeError:
-        return None
-    rest = inner[end:].strip()
-    if rest.strip("}"):
-        return None
-    return data, end, inner[:end]
+    clean = json.dumps(found if len(found) > 1 else found[0])
+    return (found if len(found) > 1 else found[0]), len(clean), clean
 
 
 def _call_from_object(item: Any) -> TextCall | None:
