@@ -168,12 +168,12 @@ def _json_calls(text: str, names: frozenset[str] | None) -> Iterator[TextCall]:
     with `names`, only those of these tools and only when the JSON is the whole text."""
     try:
         data, end = json.JSONDecoder().raw_decode(text)
+        whole = not text[end:].strip()
     except json.JSONDecodeError:
-        undoubled = _undoubled(text)
-        if undoubled is None:
+        data, whole = _undoubled(text), True  # all of the text, or None
+        if data is None:
             return
-        data, end, text = undoubled
-    if names is not None and text[end:].strip():
+    if names is not None and not whole:
         return
     for item in data if isinstance(data, list) else [data]:
         call = _call_from_object(item)
@@ -185,11 +185,10 @@ def _json_calls(text: str, names: frozenset[str] | None) -> Iterator[TextCall]:
             yield call
 
 
-def _undoubled(text: str) -> tuple[Any, int, str] | None:
+def _undoubled(text: str) -> Any | None:
     """Calls whose braces a chat template doubled (``{{"name": …}}}}``, one or several: Jinja's
-    escaped ``{{`` rendered literally, seen from the Qwen GGUF's own template): the objects inside
-    (a list when there are several), the end of them, and the text with the surplus braces
-    removed; None when it is not that."""
+    escaped ``{{`` rendered literally, seen from the Qwen GGUF's own template): the object inside
+    (a list of them when there are several); None unless all of `text` is that."""
     rest = text.lstrip()
     found: list[Any] = []
     while rest:
@@ -206,8 +205,7 @@ def _undoubled(text: str) -> tuple[Any, int, str] | None:
         rest = inner[end:].lstrip().lstrip("}").lstrip()
     if not found:
         return None
-    clean = json.dumps(found if len(found) > 1 else found[0])
-    return (found if len(found) > 1 else found[0]), len(clean), clean
+    return found if len(found) > 1 else found[0]
 
 
 def _call_from_object(item: Any) -> TextCall | None:
