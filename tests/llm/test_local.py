@@ -28,15 +28,13 @@ from robovoice.llm.base import (
 from robovoice.llm.local import LocalLlamaBackend
 from robovoice.llm.local_head import TOOL_BIAS, HeadDecision
 
+from .local_kit import PATIENT, SYSTEM
+
 pytestmark = [
     pytest.mark.integration,
     pytest.mark.asyncio(loop_scope="module"),
     pytest.mark.usefixtures("local_model_installed"),  # tests/conftest.py: fails, never skips
 ]
-
-# Correctness, not speed, is tested here: deadlines for a machine shared with other work.
-PATIENT = Deadlines(first_token_s=300, idle_s=60, total_s=600)
-SYSTEM = ChatMessage("system", "You are the voice assistant of a home robot. Answer briefly. Use the functions to act.")
 
 
 @pytest_asyncio.fixture(scope="module", loop_scope="module")

@@ -13,18 +13,17 @@ from collections.abc import AsyncIterator, Sequence
 import pytest
 import pytest_asyncio
 
-from robovoice.llm.base import ChatMessage, Deadlines, Finished, LLMEvent, ToolCallRequested, ToolSpec
+from robovoice.llm.base import ChatMessage, Finished, LLMEvent, ToolCallRequested, ToolSpec
 from robovoice.llm.local import LocalLlamaBackend
 from robovoice.llm.local_speculation import evaluate_prompt
+
+from .local_kit import PATIENT, SYSTEM
 
 pytestmark = [
     pytest.mark.integration,
     pytest.mark.asyncio(loop_scope="module"),
     pytest.mark.usefixtures("local_model_installed"),  # tests/conftest.py: fails, never skips
 ]
-
-PATIENT = Deadlines(first_token_s=300, idle_s=60, total_s=600)
-SYSTEM = ChatMessage("system", "You are the voice assistant of a home robot. Answer briefly. Use the functions to act.")
 
 
 @pytest_asyncio.fixture(scope="module", loop_scope="module")
