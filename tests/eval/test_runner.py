@@ -4,6 +4,8 @@ only forbidden actuation tools that ran count as false actuations."""
 
 from __future__ import annotations
 
+import socket
+
 from robovoice.assistant.connect import connect_robot
 from robovoice.config import RobotConfig
 from robovoice.eval.cases import Case
@@ -59,5 +61,24 @@ async def test_the_report_says_what_reached_the_robot() -> None:
     assert not read_only["passed"] and read_only["false_actuations"] == []
 
     assert report["false_actuations"] == 1 and report["passed"] == 2
-    assert report["classes"]["negated"] == {"cases": 1, "passed": 0, "false_actuations": 1, "accuracy": 0.0}
+    assert report["classes"]["negated"] == {"cases": 1, "passed": 0, "false_actuations": 1, "model_unanswered": 0,
+                                            "accuracy": 0.0}
     assert report["classes"]["-"]["cases"] == 3
+    assert report["model_unanswered"] == 0
+
+
+async def test_turns_no_model_answered_are_counted() -> None:
+    """A dead model server makes a negated case 'pass' (nothing moved): the report says that no
+    model answered it, so such a figure is not read as judgement."""
+    with socket.socket() as probe:  # a port nothing listens on: the connection is refused
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    backend = OpenAICompatBackend(f"http://127.0.0.1:{port}/v1", "m")
+    cases = [case(id="neg", text="Don't go to the kitchen", expect=[], forbid=["navigate_to"], **{"class": "negated"})]
+    try:
+        report = (await run_eval(cases, backend, lambda: connect_robot(RobotConfig(address="sim://?speed=40")))).to_dict()
+    finally:
+        await backend.aclose()
+    assert report["passed"] == 1 and report["model_unanswered"] == 1
+    assert report["results"][0]["model_unanswered"] == 1
+    assert report["classes"]["negated"]["model_unanswered"] == 1

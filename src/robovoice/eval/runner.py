@@ -77,10 +77,14 @@ class CaseResult:
     case_class: str | None = None  # the case's `class` field, for the per-class figures
     # audio cases: the stages in ms from the user's last word (`TurnMetrics.from_speech_end`)
     from_speech_end_ms: dict[str, float] = field(default_factory=dict)
+    # turns no model answered (a missed deadline, a dead server): their outcome says nothing
+    # about judgement, so a figure counts only when this is 0 everywhere
+    model_unanswered: int = 0
 
     def to_dict(self) -> dict[str, Any]:
         out = {"id": self.id, "passed": self.passed, "reason": self.reason, "calls": self.calls,
-               "false_actuations": self.false_actuations, "reply": self.reply, "latency_ms": self.latency_ms}
+               "false_actuations": self.false_actuations, "reply": self.reply, "latency_ms": self.latency_ms,
+               "model_unanswered": self.model_unanswered}
         if self.from_speech_end_ms:
             out["latency_from_speech_end_ms"] = self.from_speech_end_ms
         out.update(self.extra)
@@ -97,10 +101,12 @@ class EvalReport:
         """Cases, passes and false actuations per case `class` (a case file's own field)."""
         out: dict[str, dict[str, Any]] = {}
         for r in self.results:
-            row = out.setdefault(r.case_class or "-", {"cases": 0, "passed": 0, "false_actuations": 0})
+            row = out.setdefault(r.case_class or "-", {"cases": 0, "passed": 0, "false_actuations": 0,
+                                                       "model_unanswered": 0})
             row["cases"] += 1
             row["passed"] += int(r.passed)
             row["false_actuations"] += len(r.false_actuations)
+            row["model_unanswered"] += r.model_unanswered
         for row in out.values():
             row["accuracy"] = round(row["passed"] / row["cases"], 4)
         return out
@@ -115,6 +121,7 @@ class EvalReport:
             "passed": passed,
             "accuracy": round(passed / len(self.results), 4) if self.results else 0.0,
             "false_actuations": sum(len(r.false_actuations) for r in self.results),
+            "model_unanswered": sum(r.model_unanswered for r in self.results),
             "p50": round(percentile(headline, 50), 1) if headline else None,
             "p95": round(percentile(headline, 95), 1) if headline else None,
             "latency_stage": HEADLINE_STAGE,
@@ -176,6 +183,7 @@ async def run_case(
         extra=details,
         case_class=case.case_class,
         from_speech_end_ms=turns[0].metrics.from_speech_end() if turns else {},
+        model_unanswered=sum(t.fell_back for t in turns),
     )
 
 
