@@ -61,6 +61,32 @@ def test_validator_uses_draft_2020_12() -> None:
         ArgumentValidator("t", {"type": "object", "prefixItems": []})
 
 
+def test_validator_remembers_valid_arguments_only_and_keeps_json_types_apart() -> None:
+    validator = ArgumentValidator("t", {"type": "object", "properties": {"n": {"type": "integer"}}})
+    walks = 0
+    inner = validator._validator
+
+    class Counting:  # counts the schema walks
+        def iter_errors(self, instance: object) -> object:
+            nonlocal walks
+            walks += 1
+            return inner.iter_errors(instance)
+
+    validator._validator = Counting()  # a stand-in with the one method used
+    validator.validate({"n": 1})
+    validator.validate({"n": 1})
+    assert walks == 1  # a repeat of known-valid arguments is recognised, not walked again
+    for bad in ({"n": 1.5}, {"n": "1"}, {"n": 1.5}):
+        with pytest.raises(InvalidArgumentsError):
+            validator.validate(bad)
+    assert walks == 4  # invalid arguments are never remembered
+    with pytest.raises(InvalidArgumentsError):
+        validator.validate({"n": True})  # JSON keeps true apart from the remembered 1
+    for n in range(300):
+        validator.validate({"n": n})
+    assert len(validator._valid) == 256  # bounded: the oldest are forgotten
+
+
 def _record(**changes: object) -> AuditRecord:
     fields: dict[str, object] = dict(
         started=1_795_000_000.25, session="abc", client="c/1", tool="get_camera_image", node="camera",

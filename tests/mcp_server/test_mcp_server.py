@@ -196,3 +196,12 @@ async def test_unknown_robot_is_a_config_error() -> None:
 
     with pytest.raises(ConfigError, match="sim://"):
         parse_robot_address("turtle://")
+
+
+def test_sdk_tracing_spans_only_when_a_tracer_is_installed(monkeypatch: pytest.MonkeyPatch) -> None:
+    from opentelemetry import trace
+
+    assert RobotToolServer(MemoryMiddleware()).server.middleware == []  # no tracer: no per-call span
+    monkeypatch.setattr(trace, "get_tracer_provider", lambda: trace.NoOpTracerProvider())  # one installed
+    kept = RobotToolServer(MemoryMiddleware()).server.middleware
+    assert [type(m).__name__ for m in kept] == ["OpenTelemetryMiddleware"]
