@@ -40,6 +40,12 @@ _HINTS = {
 }
 
 
+def model_only_texts() -> tuple[str, ...]:
+    """The hints the gate gives the model: instructions for it, never words for the person
+    (`speech_guard.ModelOnlyText` keeps a reply that reads them out from being spoken)."""
+    return tuple(_HINTS.values())
+
+
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = ()
 ) -> dict[str, Any] | None:

@@ -1,4 +1,5 @@
-"""The last check before words reach the user: never speak or print raw tool-call syntax.
+"""The last check before words reach the user: never speak or print raw tool-call syntax, nor
+the model's own instructions read out (`ModelOnlyText`).
 
 Backends turn calls written as text into real calls (`robovoice.llm.text_calls`), but a model
 or server can still leak its syntax (a broken call, a format not recognised, control tokens).
@@ -9,7 +10,12 @@ the chat printer) log what they drop.
 
 from __future__ import annotations
 
+import itertools
 import re
+from collections.abc import Iterable
+
+from robovoice.assistant.gate import model_only_texts
+from robovoice.assistant.prompt import SYSTEM_PROMPT
 
 _TOOL_SYNTAX = re.compile(
     r"</?tool_call>|</?tool_response>|</?function_call>|<function=|</function>"
@@ -39,8 +45,64 @@ def tool_syntax_in(sentence: str) -> str | None:
     return found.group(0) if found is not None else None
 
 
-def speakable(sentence: str) -> str | None:
+def speakable(sentence: str, model_only: ModelOnlyText | None = None) -> str | None:
     """`sentence` (without an end-of-turn marker at its end), or None when it carries tool-call
-    syntax, or nothing else, and must not be spoken or shown."""
+    syntax or words meant for the model only (`unspeakable_in`), or nothing else, and must not
+    be spoken or shown."""
     sentence = without_end_marker(sentence)
-    return None if tool_syntax_in(sentence) is not None or not sentence.strip() else sentence
+    unspeakable = unspeakable_in(sentence, model_only or MODEL_ONLY)
+    return None if unspeakable is not None or not sentence.strip() else sentence
+
+
+# --- text meant for the model only -------------------------------------------------------------
+
+COPIED_RUN_WORDS = 6  # this many words in a row from the model's instructions: reading them out
+_SHORTEST_COPY = 3  # a sentence shorter than the run is a copy when all of it (3 words or more) is
+_ADDRESSEE = ("the", "user")  # how instructions name the person; speaking to them, the robot says "you"
+_WORD = re.compile(r"[a-z0-9]+")
+
+
+def _words(text: str) -> list[str]:
+    return _WORD.findall(text.lower())
+
+
+class ModelOnlyText:
+    """Text the model reads that is not for the person's ears: the system prompt, the gate's hints
+    (`gate.model_only_texts`), a tool error's hint. A small model sometimes reads such text out
+    ("Please tell the user which one they mean"); a sentence that reproduces it is never spoken.
+
+    Two signs, neither a list of phrases: `COPIED_RUN_WORDS` words in a row of such a text (or
+    all of a shorter sentence, from 3 words), and the person named as the instructions name
+    them ("the user"). A reply that only follows a hint shares a few words with it ("I do not
+    know that place" after "tell the user you do not know that place") and stays speakable.
+    """
+
+    def __init__(self, texts: Iterable[str] = ()) -> None:
+        self._runs: set[tuple[str, ...]] = set()
+        for text in texts:
+            self.add(text)
+
+    def add(self, text: str) -> None:
+        """Remember `text` as model-only (every run of 3 to `COPIED_RUN_WORDS` of its words)."""
+        words = _words(text)
+        for size in range(_SHORTEST_COPY, COPIED_RUN_WORDS + 1):
+            self._runs.update(tuple(words[i : i + size]) for i in range(len(words) - size + 1))
+
+    def copied_in(self, sentence: str) -> str | None:
+        """The model-only words `sentence` reproduces, or None when it reproduces none."""
+        words = _words(sentence)
+        size = COPIED_RUN_WORDS if len(words) > COPIED_RUN_WORDS else len(words)
+        if size >= _SHORTEST_COPY:
+            for i in range(len(words) - size + 1):
+                if tuple(words[i : i + size]) in self._runs:
+                    return " ".join(words[i : i + size])
+        return " ".join(_ADDRESSEE) if _ADDRESSEE in itertools.pairwise(words) else None
+
+
+MODEL_ONLY = ModelOnlyText([SYSTEM_PROMPT, *model_only_texts()])
+
+
+def unspeakable_in(sentence: str, model_only: ModelOnlyText = MODEL_ONLY) -> str | None:
+    """The first piece of `sentence` that must never be spoken or shown: tool-call syntax, or
+    words meant for the model only (`ModelOnlyText`); None when there is none."""
+    return tool_syntax_in(sentence) or model_only.copied_in(sentence)

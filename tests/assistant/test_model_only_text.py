@@ -1,0 +1,92 @@
+"""Issue 11: the model once spoke the gate's hint aloud. Text meant for the model (its system
+prompt, the gate's hints, a tool error's hint) is never words for the person: a sentence that
+reproduces it is unspeakable (`speech_guard.unspeakable_in`), whatever the wording of the hint."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import pytest
+
+from robovoice.assistant.connect import connect_robot
+from robovoice.assistant.events import SentenceReady, TurnEvent
+from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts
+from robovoice.assistant.loop import Assistant
+from robovoice.assistant.prompt import SYSTEM_PROMPT
+from robovoice.assistant.speech_guard import ModelOnlyText, speakable, unspeakable_in
+from robovoice.config import RobotConfig
+from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
+from robovoice.llm.openai_compat import OpenAICompatBackend
+
+SIM = RobotConfig(address="sim://?speed=50")
+
+# replies a person should hear: some follow a hint closely, none reads one out
+REPLIES = [
+    "All right, I will stay here.",
+    "I do not know that place.",
+    "I know the kitchen, the bedroom and the front door.",
+    "I can switch the projector on if you ask me to.",
+    "Which room do you mean?",
+    "The projector is now on.",
+    "I am a small helper robot.",
+    "Sorry, I did not catch that.",
+    "Your son Ben sounds lovely.",
+]
+
+
+@pytest.mark.parametrize("hint", model_only_texts())
+def test_every_gate_hint_read_out_is_unspeakable_whole_or_in_part(hint: str) -> None:
+    assert unspeakable_in(hint) is not None and speakable(hint) is None
+    for sentence in hint.split(". "):  # each of its sentences on its own, as the splitter hands them on
+        assert speakable(sentence) is None, sentence
+
+
+@pytest.mark.parametrize("reply", REPLIES)
+def test_replies_that_follow_a_hint_are_spoken(reply: str) -> None:
+    assert unspeakable_in(reply) is None and speakable(reply) == reply
+
+
+def test_the_system_prompt_and_any_tool_hint_read_out_are_unspeakable() -> None:
+    for sentence in SYSTEM_PROMPT.split(". "):
+        if len(sentence.split()) >= 3:
+            assert speakable(sentence) is None, sentence
+    # a robot's own tool error hint, not known in advance: naming the person as "the user" gives it away
+    assert speakable("Please tell the user which one they mean.") is None
+    # ... and once the hint is known, a copy of it without that name too
+    hint = "name the known places and ask which one they mean"
+    assert speakable("Name the known places and ask which one they mean.") is not None
+    known = ModelOnlyText([hint])
+    assert speakable("Name the known places and ask which one they mean.", known) is None
+    assert speakable("I know the kitchen and the bedroom.", known) is not None
+
+
+def echo_the_hint(request: Any) -> Any:
+    """A small model that reads the refusal's hint out, then says something sensible."""
+    tool = request.messages[-1]
+    if tool.get("role") != "tool":
+        return ToolCallReply((ScriptedCall("navigate_to", {"target": "bathroom"}),))
+    hint = json.loads(tool["content"])["hint"]
+    return TextReply(f"{hint} All right, I will stay here.")
+
+
+async def test_a_model_that_echoes_the_gate_hint_has_only_its_own_words_spoken() -> None:
+    said: list[str] = []
+
+    def on_event(event: TurnEvent) -> None:
+        if isinstance(event, SentenceReady):
+            said.append(event.text)
+
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(default=CallbackReply(echo_the_hint)) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("Don't drive to the bathroom just now.",
+                                                                observer=on_event)
+        finally:
+            await backend.aclose()
+    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
+    hint = json.loads(server.requests[1].messages[-1]["content"])["hint"]
+    assert hint in result.reply  # the model did read the hint out ...
+    spoken = [s for s in said if speakable(s) is not None]
+    assert spoken == ["All right, I will stay here."]  # ... and only its own words are speakable
+    assert len(said) > len(spoken)
