@@ -2,7 +2,8 @@
 
 A transcript is a stop command when, after removing punctuation, the wake phrase and a few
 fillers ("please", "now", "robot", "okay", ...), nothing is left but a stop phrase ("stop",
-"stop the robot", "halt", "stop moving", "freeze", repeated or not). Anything more ("stop
+"stop the robot", "halt", "stop moving", "freeze", repeated or not; "stop my robot", as Whisper
+tiny.en hears the soak's "Stop the robot!"). Anything more ("stop
 the call", "don't stop", "stop at the kitchen") is not: that is for the model.
 """
 
@@ -12,11 +13,12 @@ import re
 from typing import Final
 
 STOP_PHRASES: Final = frozenset({
-    "stop", "halt", "freeze", "stop the robot", "stop robot", "stop moving", "stop driving", "stop it",
+    "stop", "halt", "freeze", "stop the robot", "stop robot", "stop my robot", "stop moving", "stop driving", "stop it",
     "stop right there", "stop there", "stop now", "stop right now", "emergency stop", "stop stop",
 })  # fmt: skip
 _FILLERS: Final = ("please", "right now", "now", "immediately", "okay", "ok", "hey", "jarvis", "robot",
                    "oh", "hey robot", "you")  # fmt: skip
+_FILLER_WORDS: Final = tuple(f.split() for f in _FILLERS)
 _WORDS: Final = re.compile(r"[a-z']+")
 
 
@@ -32,19 +34,19 @@ def is_stop_command(text: str) -> bool:
     if words in STOP_PHRASES:
         return True
     tokens = words.split()
-    # strip fillers from both ends ("hey jarvis stop please", "okay robot halt now")
-    changed = True
-    while changed and tokens:
-        changed = False
-        for filler in sorted(_FILLERS, key=len, reverse=True):
-            f = filler.split()
-            if tokens[: len(f)] == f and len(tokens) > len(f):
-                tokens = tokens[len(f) :]
-                changed = True
-            if tokens[-len(f) :] == f and len(tokens) > len(f):
-                tokens = tokens[: -len(f)]
-                changed = True
-    phrase = " ".join(tokens)
-    if phrase in STOP_PHRASES:
-        return True
-    return bool(tokens) and all(t in ("stop", "halt") for t in tokens)
+    # a stop phrase with nothing but fillers around it ("hey jarvis stop please", "okay stop the
+    # robot right now"); "robot" is a filler but also part of "stop the robot", so every span is tried
+    for i in range(len(tokens)):
+        for j in range(i + 1, len(tokens) + 1):
+            if " ".join(tokens[i:j]) in STOP_PHRASES and _fillers_only(tokens[:i]) and _fillers_only(tokens[j:]):
+                return True
+    return all(t in ("stop", "halt") for t in tokens)
+
+
+def _fillers_only(tokens: list[str]) -> bool:
+    """Whether `tokens` is a run of fillers (empty included)."""
+    ends = {0}  # positions reachable by whole fillers from the start
+    for k in range(len(tokens)):
+        if k in ends:
+            ends.update(k + len(f) for f in _FILLER_WORDS if tokens[k : k + len(f)] == f)
+    return len(tokens) in ends

@@ -1,0 +1,27 @@
+"""The spoken stop's grammar (`stop.is_stop_command`) on what speech-to-text makes of real stop
+lines: Whisper tiny.en hears the soak's Piper "Stop the robot!" as "Stop my robot!", which the
+first soak's three stops were lost to."""
+
+from __future__ import annotations
+
+import pytest
+
+from robovoice.voice.stop import is_stop_command
+
+
+@pytest.mark.parametrize("text", ["Stop my robot!", "stop my robot", "Stop my robot now!", "Please stop my robot."])
+def test_what_whisper_hears_for_stop_the_robot_is_a_stop(text: str) -> None:
+    assert is_stop_command(text)
+
+
+@pytest.mark.parametrize("text", ["Stop my call.", "Stop my music.", "Don't stop my robot.",
+                                  "Stop my robot at the kitchen."])
+def test_stop_my_something_else_is_not_a_stop(text: str) -> None:
+    assert not is_stop_command(text)
+
+
+@pytest.mark.parametrize("text", ["Please stop the robot.", "Stop the robot now!", "Stop the robot, please.",
+                                  "Okay, stop the robot right now."])
+def test_a_stop_phrase_with_fillers_around_it_is_a_stop(text: str) -> None:
+    # "robot" is a filler too: stripping it first used to leave "stop the", which is no stop
+    assert is_stop_command(text)
