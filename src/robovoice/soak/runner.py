@@ -51,14 +51,20 @@ HANG_S = 900.0  # more than this after a command's first timeout: the turn hangs
 @dataclass(frozen=True, slots=True)
 class SoakSettings:
     """`hours` of stream time; commands every `mean_gap_minutes` on average (exponential, at
-    least 20 s apart); a sample every `sample_minutes`; figures after `warm_up_minutes`."""
+    least 20 s apart); a sample every `sample_minutes`; figures after `warm_up_minutes`.
+
+    `sim_speed` 1: the robot drives at its real speed (0.5 m/s, a drive 9-24 s) while the
+    assistant hears and answers in real time (the stream is paced while it works). A faster
+    sim ends a drive before anyone could say "stop" into it (at 10 a drive lasted 1-2.4 s, less
+    than the stop line, the end of speech and its transcription: 0/3 stops in the first run)
+    and drains the battery ten times faster than the hours of the home being simulated."""
 
     hours: float = 2.0
     seed: int = 1
     mean_gap_minutes: float = 3.0
     sample_minutes: float = 5.0
     warm_up_minutes: float = 15.0
-    sim_speed: float = 10.0
+    sim_speed: float = 1.0
     turn_timeout_s: float = 180.0
 
 
@@ -168,8 +174,10 @@ async def _background(run: _Run, sounds: SoakSounds, rng: np.random.Generator, s
         run.room.played.clear()  # the room's own record of the robot's speech; not the assistant's memory
 
 
-async def _script(run: _Run, settings: SoakSettings, sounds: SoakSounds, rng: np.random.Generator) -> None:
+async def _script(run: _Run, settings: SoakSettings, sounds: SoakSounds, rng: np.random.Generator,
+                  commands: Sequence[Command] | None) -> None:
     end = settings.hours * 3600.0
+    given = iter(commands) if commands is not None else None
     try:
         await run.room.until(run.room.now + 0.5, NEVER)
         while run.room.now < end:
@@ -177,7 +185,10 @@ async def _script(run: _Run, settings: SoakSettings, sounds: SoakSounds, rng: np
             await _background(run, sounds, rng, min(gap, end - run.room.now))
             if run.room.now >= end:
                 break
-            outcome = await _give(run, next_command(rng, run.sim.state), sounds, settings.turn_timeout_s)
+            cmd = next_command(rng, run.sim.state) if given is None else next(given, None)
+            if cmd is None:
+                break  # the given commands are all said
+            outcome = await _give(run, cmd, sounds, settings.turn_timeout_s)
             run.tally.outcomes.append(outcome)
             log.info("soak %.0f s (wall %.1f s): %s -> %s", outcome.sim_at, outcome.wall_s, outcome.command.say,
                      ("ok" if outcome.done else str(outcome.problem)) + (" (late)" if outcome.late else ""))
@@ -198,9 +209,12 @@ async def _sampler(room: SimulatedRoom, samples: list[Sample], every_s: float, w
 
 
 async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSettings = SoakSettings(), *,
-                   warm_up: Callable[[Sequence[ToolSpec]], Awaitable[Any]] | None = None) -> SoakReport:
+                   warm_up: Callable[[Sequence[ToolSpec]], Awaitable[Any]] | None = None,
+                   commands: Sequence[Command] | None = None) -> SoakReport:
     """See the module docstring. `backend` is used, not closed; `warm_up` is given the robot's
-    tools before the first sound (the embedded model evaluates its prompt prefix then)."""
+    tools before the first sound (the embedded model evaluates its prompt prefix then).
+    `commands`: these, in order (then the run ends), instead of the random script: a test
+    gives the one scenario it looks at."""
     rng = np.random.default_rng(settings.seed)
     sounds = SoakSounds(models.tts, rng)
     tally = Tally()
@@ -242,7 +256,7 @@ async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSetti
                     group.create_task(pipeline.run(finish_timeout_s=30.0), name="soak-pipeline")
                     sampler = group.create_task(_sampler(room, samples, settings.sample_minutes * 60.0, wall0, tally),
                                                 name="soak-sampler")
-                    await _script(run, settings, sounds, rng)
+                    await _script(run, settings, sounds, rng, commands)
                     sampler.cancel()
             except Exception as exc:  # the report says the run crashed, with what
                 log.exception("the soak run failed")

@@ -5,6 +5,10 @@ Kinds: ``drive`` (to a named place), ``question`` (battery, where are you), ``pr
 ``call`` (call Anna / end the call, by the sim's state), ``stop`` (a drive, then "Stop the
 robot!" without the wake word while it moves), ``barge`` (a question with a long answer,
 then the wake word and a battery question while the robot is still talking).
+
+A robot at home keeps its battery up: when it is low (`DOCK_BELOW_PERCENT`) the next command
+sends it to the charging dock, where the sim charges it. A drive the robot refuses for its
+battery (``battery_low`` / ``battery_empty``) is done right only when the answer says so.
 """
 
 from __future__ import annotations
@@ -13,15 +17,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from robovoice.assistant.events import ToolCalled
+from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.sim import SimState
-from robovoice.voice.events import BargedIn, PipelineEvent, RobotStopped, VoiceTurnFinished
+from robovoice.voice.events import BargedIn, PipelineEvent, RobotStopped, UtteranceIgnored, VoiceTurnFinished
 
 KINDS = ("drive", "question", "projector", "call", "stop", "barge")
 WEIGHTS = (0.28, 0.2, 0.12, 0.14, 0.13, 0.13)
 PLACES = ("kitchen", "living room", "bedroom", "bathroom", "hallway", "front door", "charging dock")
 #: Far enough from anywhere for a stop to land mid-drive.
 STOP_PLACES = ("front door", "kitchen", "bedroom", "living room")
+DOCK = "charging dock"
+#: Below this the person sends the robot to its dock (the sim refuses other drives below 5 %).
+DOCK_BELOW_PERCENT = 20.0
+BATTERY_REFUSALS = frozenset({"battery_low", "battery_empty"})
 STOP_LINE = "Stop the robot!"
 BARGE_LINE = "Hey Jarvis, how much battery do you have left?"
 QUESTIONS = (("Hey Jarvis, how much battery do you have left?", "get_battery_state"),
@@ -43,7 +51,10 @@ class Command:
 
 
 def next_command(rng: np.random.Generator, state: SimState) -> Command:
-    """A random command that makes sense in the robot's current state."""
+    """A random command that makes sense in the robot's current state (the dock when its
+    battery is low)."""
+    if state.battery_percent < DOCK_BELOW_PERCENT and state.nearest_place != DOCK and not state.moving:
+        return Command("drive", f"Hey Jarvis, go to the {DOCK}.", "navigate_to", place=DOCK)
     kind = str(rng.choice(KINDS, p=np.array(WEIGHTS) / sum(WEIGHTS)))
     if kind == "drive":
         place = str(rng.choice([p for p in PLACES if p != state.nearest_place]))
@@ -80,12 +91,14 @@ class Outcome:
     late: bool = False  # not idle within the turn timeout (then waited on, up to a hang bound)
     wall_s: float = 0.0
     calls: list[str] = field(default_factory=list)
+    errors: list[str] = field(default_factory=list)  # the tools' structured error codes
+    reply: str = ""  # what the assistant answered (the last reply)
 
     def to_dict(self) -> dict[str, object]:
         return {"kind": self.command.kind, "said": self.command.say, "follow": self.command.follow,
                 "sim_at_s": round(self.sim_at, 1), "answered": self.answered, "done": self.done,
                 "problem": self.problem, "barged_in": self.barged_in, "late": self.late, "calls": self.calls,
-                "wall_s": round(self.wall_s, 2)}
+                "errors": self.errors, "reply": self.reply, "wall_s": round(self.wall_s, 2)}
 
 
 def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> None:
@@ -95,12 +108,21 @@ def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> Non
     replied = [e for e in finished if not e.cancelled and e.result is not None and e.result.reply.strip()]
     stops = [e for e in events if isinstance(e, RobotStopped)]
     outcome.calls = [e.name for e in events if isinstance(e, ToolCalled)]
+    outcome.errors = [e.error for e in events if isinstance(e, ToolReturned) and e.error]
+    outcome.reply = replied[-1].result.reply.strip() if replied and replied[-1].result else ""
     outcome.barged_in = any(isinstance(e, BargedIn) for e in events)
     if cmd.kind == "stop":
         outcome.answered = bool(stops) and stops[-1].ok
-        problem = None if outcome.answered else "the spoken stop did not reach the robot"
+        # what was heard instead says why (e.g. a transcript that is no stop, or one too late)
+        heard = "; ".join(f"{e.reason} {e.text!r} at {e.start:.1f}-{e.end:.1f} s" for e in events
+                          if isinstance(e, UtteranceIgnored) and e.reason != "no_wake_word")
+        problem = None if outcome.answered else "the spoken stop did not reach the robot" + (
+            f" (heard: {heard})" if heard else "")
         if problem is None and state.moving:
             problem = "the robot is still moving after the stop"
+        if problem is None and any(isinstance(e, ToolReturned) and e.name == "navigate_to" and not e.is_error
+                                   for e in events):
+            problem = "the drive arrived: the stop came after it had ended"
         if problem is None and "navigate_to" not in outcome.calls:
             problem = "the drive never started"
     else:
@@ -108,7 +130,12 @@ def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> Non
         problem = None if outcome.answered else "no turn finished with a reply"
         if problem is None and cmd.tool not in outcome.calls:
             problem = f"{cmd.tool} was not called (calls: {', '.join(outcome.calls) or 'none'})"
-        if problem is None and cmd.place is not None and (state.moving or state.nearest_place != cmd.place):
+        refused = BATTERY_REFUSALS.intersection(outcome.errors)
+        if problem is None and refused and cmd.place is not None:
+            # the robot cannot drive: right only if the person is told why, not a silent "on my way"
+            if "battery" not in outcome.reply.lower():
+                problem = f"the drive was refused ({', '.join(sorted(refused))}) but the answer does not say why"
+        elif problem is None and cmd.place is not None and (state.moving or state.nearest_place != cmd.place):
             problem = f"the robot is at the {state.nearest_place}, not the {cmd.place}"
         if problem is None and cmd.projector_on is not None and state.projector_on != cmd.projector_on:
             problem = f"the projector is {'on' if state.projector_on else 'off'}"
