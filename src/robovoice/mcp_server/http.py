@@ -26,7 +26,7 @@ from typing import Any
 from urllib.parse import urlsplit
 
 import uvicorn
-from mcp.server.streamable_http_manager import StreamableHTTPASGIApp, StreamableHTTPSessionManager
+from mcp.server.streamable_http_manager import StreamableHTTPASGIApp
 from mcp.server.transport_security import TransportSecuritySettings
 from starlette.applications import Starlette
 from starlette.datastructures import Headers
@@ -37,6 +37,7 @@ from starlette.types import ASGIApp, Receive, Scope, Send
 from robovoice.config import read_secret_file
 from robovoice.errors import ConfigError
 from robovoice.mcp_server._groups import owned_tasks
+from robovoice.mcp_server.json_first import KEEPALIVE_S, JsonFirst, JsonFirstSessionManager
 from robovoice.mcp_server.limits import BodyLimits
 from robovoice.mcp_server.server import RobotToolServer
 from robovoice.mcp_server.sse_deferral import DeferSse
@@ -137,14 +138,17 @@ def is_wildcard(host: str) -> bool:
 
 
 def build_http_app(server: RobotToolServer, *, host: str = "127.0.0.1", token: str | None = None,
-                   path: str = MCP_PATH, allowed_hosts: Iterable[str] = ()) -> ASGIApp:
+                   path: str = MCP_PATH, allowed_hosts: Iterable[str] = (),
+                   keepalive_s: float = KEEPALIVE_S) -> ASGIApp:
     """The ASGI app: the SDK's streamable-HTTP session manager at `path`, behind `HttpGuard`;
-    `DeferSse` answers a 2025-session POST with JSON when its response is all it has to say.
+    `JsonFirst` serves a 2026-07-28 request that cannot stream on the SDK's JSON path (SSE
+    keep-alive pings after `keepalive_s` of silence), and `DeferSse` answers a 2025-session
+    POST with JSON when its response is all it has to say.
 
     Allowed ``Host``/``Origin`` names: the loopback names, `host`, and `allowed_hosts`. A
     wildcard bind (0.0.0.0, ::) with a token and no `allowed_hosts` accepts any ``Host``.
     """
-    manager = StreamableHTTPSessionManager(
+    manager = JsonFirstSessionManager(
         app=server.server,
         # The Host/Origin checks are HttpGuard's, on every path; the SDK's would duplicate them.
         security_settings=TransportSecuritySettings(enable_dns_rebinding_protection=False),
@@ -158,8 +162,8 @@ def build_http_app(server: RobotToolServer, *, host: str = "127.0.0.1", token: s
     app = Starlette(routes=[Route(path, endpoint=StreamableHTTPASGIApp(manager))], lifespan=lifespan)
     extra = frozenset(allowed_hosts)
     any_host = is_wildcard(host) and token is not None and not extra
-    return HttpGuard(BodyLimits(DeferSse(app)), allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token,
-                     any_host=any_host)
+    guarded = BodyLimits(JsonFirst(DeferSse(app), keepalive_s=keepalive_s))
+    return HttpGuard(guarded, allowed_hosts=LOOPBACK_NAMES | {host} | extra, token=token, any_host=any_host)
 
 
 @dataclass(frozen=True, slots=True)
