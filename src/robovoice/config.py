@@ -243,10 +243,45 @@ class VoiceConfig(_Frozen):
     one_moment: str = "One moment."
     one_moment_after_s: float = Field(default=1.5, gt=0)
     stop_timeout_s: float = Field(default=5.0, gt=0)  # the stop tool's answer, at most
+    # using the end-of-turn silence (docs/voice.md): a shorter silence after a complete
+    # request, and the model prefilled (and its tool call decoded) on the speculative transcript
+    early_end: bool = True
+    early_end_silence_ms: int = 300
+    speculative_prefill: bool = True
+    speculative_decode: bool = True
+    # a command transcript whose mean token log-probability is below this is turned away
+    # ("Sorry, I didn't catch that."); -0.6 was chosen on the dev audio (docs/judgement.md)
+    confidence_check: bool = True
+    confidence_min_logprob: float = -0.6
     # speech-to-text: Whisper tiny.en (takes vocabulary hints), Moonshine base-en, or none
     # (only with an audio-capable model)
     stt: Literal["whisper", "moonshine", "none"] = "whisper"
     vocabulary: tuple[str, ...] = ()  # extra words for speech-to-text (names, places)
+
+    @field_validator("early_end_silence_ms")
+    @classmethod
+    def _early_end_silence(cls, value: int) -> int:
+        if not 50 <= value <= 5000:
+            raise ValueError(f"early_end_silence_ms = {value}: give milliseconds from 50 to 5000, shorter than "
+                             f"end_of_turn_silence_ms (default 300), or set early_end = false")
+        return value
+
+    @field_validator("confidence_min_logprob")
+    @classmethod
+    def _min_logprob(cls, value: float) -> float:
+        if not -10.0 <= value < 0.0:  # a mean log-probability is <= 0; below -10 nothing is ever turned away
+            raise ValueError(f"confidence_min_logprob = {value}: give a mean token log-probability from -10 "
+                             f"up to (not including) 0 (default -0.6; lower turns fewer transcripts away), "
+                             f"or set confidence_check = false")
+        return value
+
+    @model_validator(mode="after")
+    def _early_end_is_shorter(self) -> VoiceConfig:
+        if self.early_end and self.early_end_silence_ms >= self.end_of_turn_silence_ms:
+            raise ValueError(f"early_end_silence_ms = {self.early_end_silence_ms} is not shorter than "
+                             f"end_of_turn_silence_ms = {self.end_of_turn_silence_ms}: give a shorter one "
+                             f"(default 300), or set early_end = false")
+        return self
 
     @property
     def spoken_wake_phrase(self) -> str:

@@ -4,23 +4,17 @@ pipeline turning an unsure command away while a spoken stop stays immediate."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import pytest
 
 from robovoice.audio.format import AudioChunk
 from robovoice.audio.stt import Confidence, Transcript, WordScore
+from robovoice.config import load_config
 from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
-from robovoice.voice.confidence import (
-    DEFAULT_CHECK,
-    DIDNT_CATCH,
-    ConfidenceCheck,
-    ScoredTranscripts,
-    command_words,
-    mean_word_probability,
-    transcript_of,
-    unsure_reason,
-)
+from robovoice.voice.confidence import DIDNT_CATCH, command_words, mean_word_probability, unsure_reason
+from robovoice.voice.config import ConfidenceCheck, PipelineConfig
 from robovoice.voice.events import RobotStopped, SentenceSpoken, UtteranceIgnored, VoiceTurnFinished
 
 from .voice_kit import SettableTranscriber, babble, fake_models, voice_session, wake_command
@@ -52,39 +46,22 @@ def test_unsure_reason_names_the_score_and_the_threshold() -> None:
     assert unsure_reason(low, "go to the kitchen.", check) == "unsure: mean log-probability -1.06 < -0.60"
     assert unsure_reason(high, "go to the kitchen.", check) is None
     assert unsure_reason(low, "go to the kitchen.", ConfidenceCheck(None)) is None  # None: the check is off
-    # no scores (Moonshine) or no transcript found: never turned away
+    # no scores (Moonshine): never turned away
     assert unsure_reason(Transcript("go kitchen", 2.0), "go kitchen", check) is None
-    assert unsure_reason(None, "go kitchen", check) is None
 
 
 class ScoredTranscriber(SettableTranscriber):
     """The settable fake, its transcripts carrying scores (`avg_logprob`, and as word
-    probabilities its exponential), kept for `scored` as `WhisperTranscriber` keeps them."""
+    probabilities its exponential), as `WhisperTranscriber`'s do."""
 
     def __init__(self) -> None:
         super().__init__()
         self.avg_logprob = -0.1
-        self._recent: dict[str, Transcript] = {}
 
     def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
         plain = super().transcribe(audio, hint)
         words = tuple(WordScore(w, math.exp(self.avg_logprob)) for w in plain.text.split())
-        heard = Transcript(plain.text, plain.duration_s, confidence=Confidence(words, self.avg_logprob, 0.01))
-        self._recent[heard.text] = heard
-        return heard
-
-    def scored(self, text: str) -> Transcript | None:
-        return self._recent.get(text)
-
-
-def test_transcript_of_asks_only_a_transcriber_that_keeps_scores() -> None:
-    stt = ScoredTranscriber()
-    assert isinstance(stt, ScoredTranscripts)
-    stt.text = "Hey Jarvis, call Anna."
-    heard = stt.transcribe(wake_command())
-    assert transcript_of(stt, "Hey Jarvis, call Anna.") is heard
-    assert transcript_of(stt, "something else") is None
-    assert transcript_of(SettableTranscriber(), "Hey Jarvis, call Anna.") is None
+        return Transcript(plain.text, plain.duration_s, confidence=Confidence(words, self.avg_logprob, 0.01))
 
 
 # The pipeline: far below the shipped threshold the command is turned away; well above it, it
@@ -93,8 +70,9 @@ UNSURE, SURE = -1.5, -0.1
 
 
 def test_the_shipped_threshold_lies_between_the_test_scores() -> None:
-    assert DEFAULT_CHECK.min_avg_logprob is not None
-    assert UNSURE < DEFAULT_CHECK.min_avg_logprob < SURE
+    shipped = PipelineConfig.from_config().confidence.min_avg_logprob
+    assert shipped == -0.6  # chosen on the dev audio (docs/judgement.md)
+    assert UNSURE < shipped < SURE
 
 
 async def test_an_unsure_command_is_turned_away_and_can_be_said_again_without_the_wake_word(
@@ -116,6 +94,26 @@ async def test_an_unsure_command_is_turned_away_and_can_be_said_again_without_th
     assert ignored.reason.startswith("unsure: mean log-probability -1.50")
     assert ignored.text == "Hey Jarvis, turn on the projector."
     assert [e.text for e in s.log.of(SentenceSpoken)] == [DIDNT_CATCH, "The projector is now on."]  # its phrase
+    assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
+    assert s.sim.state.projector_on
+
+
+@pytest.mark.parametrize("keys", ["confidence_min_logprob = -2.0", "confidence_check = false"])
+async def test_a_config_file_lowering_or_turning_off_the_check_acts_on_the_same_unsure_command(
+    keys: str, tmp_path: Path, server: FakeOpenAIServer, backend: OpenAICompatBackend,
+) -> None:
+    path = tmp_path / "robovoice.toml"
+    path.write_text(f"[voice]\n{keys}\n", encoding="utf-8")
+    config = load_config(path).voice
+    stt = ScoredTranscriber()
+    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)))
+    async with voice_session(fake_models(stt), backend, speed=2.0, config=config) as s:
+        stt.text, stt.avg_logprob = "Hey Jarvis, turn on the projector.", UNSURE  # turned away by default
+        await s.say(wake_command())
+        done = await s.log.wait_for(VoiceTurnFinished)
+        await s.settle()
+    assert not [e for e in s.log.of(UtteranceIgnored) if e.reason.startswith("unsure")]
+    assert DIDNT_CATCH not in [e.text for e in s.log.of(SentenceSpoken)]
     assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
     assert s.sim.state.projector_on
 

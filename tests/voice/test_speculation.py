@@ -12,8 +12,10 @@ import numpy as np
 from robovoice.assistant.events import ToolCalled
 from robovoice.audio.fakes import EnergyVAD, ToneWakeDetector
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, silence
+from robovoice.audio.stt import Transcript
 from robovoice.audio.vad import Endpointer, EndpointerConfig, SpeechEnded, SpeechSegmenter, SpeechStarted
 from robovoice.audio.wake import WakeDecider, WakeWordSpotter
+from robovoice.config import VoiceConfig
 from robovoice.llm.base import ChatMessage, ToolSpec
 from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
@@ -138,6 +140,11 @@ class FakeAssistant:
         return [ChatMessage("system", "s"), ChatMessage("user", text)], [ToolSpec("navigate_to", "go", {})]
 
 
+def speculation(**voice: object) -> SpeculationConfig:
+    """The speculation settings of a ``[voice]`` section with these keys."""
+    return SpeculationConfig.from_config(VoiceConfig.model_validate(voice))
+
+
 def pause_recorder() -> tuple[HeardPause, list[float]]:
     allowed: list[float] = []
     return HeardPause(0.0, 1.0, silence(MODEL_FORMAT, 0.1), allowed.append), allowed
@@ -149,11 +156,11 @@ async def follow(text: str, *, command: bool = True, config: SpeculationConfig |
     async with FakeOpenAIServer() as server:
         backend = RecordingBackend(server)
         assistant = FakeAssistant(backend)
-        speculator = Speculator(config or SpeculationConfig(), assistant, "hey jarvis")  # type: ignore[arg-type]  # a stand-in with first_request
+        speculator = Speculator(config or speculation(), assistant, "hey jarvis")  # type: ignore[arg-type]  # a stand-in with first_request
 
-        async def transcribe() -> tuple[str, float]:
+        async def transcribe() -> tuple[Transcript, float]:
             await asyncio.sleep(0.01)
-            return text, 10.0
+            return Transcript(text, 1.0), 10.0
 
         task = asyncio.create_task(transcribe())
         if cancelled:
@@ -178,7 +185,8 @@ async def test_go_to_the_keeps_the_full_silence_but_is_still_prefilled() -> None
 
 
 async def test_no_early_end_when_switched_off_no_prefill_for_a_stop_or_a_stop_check() -> None:
-    allowed, _, prefills = await follow("Go to the kitchen.", config=SpeculationConfig(early_end=False, prefill=False))
+    allowed, _, prefills = await follow("Go to the kitchen.", config=speculation(early_end=False,
+                                                                                    speculative_prefill=False))
     assert (allowed, prefills) == ([], [])
     allowed, _, prefills = await follow("Hey Jarvis, stop!")
     assert allowed == [0.3] and prefills == []  # a stop goes to the stop tool, not the model

@@ -18,7 +18,6 @@ import math
 import os
 import threading
 import time
-from collections import OrderedDict
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Protocol, runtime_checkable
@@ -262,8 +261,7 @@ class WhisperTranscriber:
     the confidence check (voice/confidence.py) does not use them, and the pass made each
     transcription 13 % slower (p50 over the 28 dev wake clips, load 30).
 
-    Thread-safe (calls are serialised). The transcripts of the last `remember` calls can be
-    looked up by their text (`scored`): the pipeline hands transcripts on as text."""
+    Thread-safe (calls are serialised)."""
 
     def __init__(
         self,
@@ -274,7 +272,6 @@ class WhisperTranscriber:
         beam_size: int = 5,
         word_scores: bool = False,
         warm_up: bool = True,
-        remember: int = 8,
     ) -> None:
         os.environ.setdefault("HF_HUB_OFFLINE", "1")  # never reach for the hub
         try:
@@ -299,8 +296,6 @@ class WhisperTranscriber:
         self._beam_size = beam_size
         self._word_scores = word_scores
         self._lock = threading.Lock()
-        self._recent: OrderedDict[str, Transcript] = OrderedDict()
-        self._remember = remember
         logger.info("Whisper model loaded from %s", self.model_dir)
         if warm_up:
             self._run(np.zeros(MODEL_FORMAT.rate, dtype=np.float32))
@@ -310,23 +305,12 @@ class WhisperTranscriber:
         started = time.perf_counter()
         samples = _to_model_input(audio)
         text, confidence = self._run(samples, hint)
-        transcript = Transcript(
+        return Transcript(
             text=text,
             duration_s=samples.shape[0] / MODEL_FORMAT.rate,
             inference_s=time.perf_counter() - started,
             confidence=confidence,
         )
-        with self._lock:
-            self._recent[text] = transcript
-            self._recent.move_to_end(text)
-            while len(self._recent) > self._remember:
-                self._recent.popitem(last=False)
-        return transcript
-
-    def scored(self, text: str) -> Transcript | None:
-        """The latest of the recent transcripts whose text is `text` (None: not among them)."""
-        with self._lock:
-            return self._recent.get(text)
 
     def _run(self, samples: np.ndarray, hint: str = "") -> tuple[str, Confidence]:
         with self._lock:

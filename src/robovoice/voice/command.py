@@ -22,7 +22,7 @@ from robovoice.assistant.loop import Assistant, TurnResult
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.llm.base import AudioPart, ContentPart
 from robovoice.voice.answers import AnswerRecorder
-from robovoice.voice.confidence import DIDNT_CATCH, transcript_of, unsure_reason
+from robovoice.voice.confidence import DIDNT_CATCH, unsure_reason
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import Emit, TranscriptReady, VoiceTurnFinished, VoiceTurnStarted
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
@@ -126,7 +126,8 @@ class CommandTurn:
                 content = (AudioPart(wav_bytes(audio)),)
             else:
                 assert c.stt is not None
-                raw = await c.stt.text_for(audio, metrics, speculation, c.hint)
+                heard = await c.stt.transcript_for(audio, metrics, speculation, c.hint)
+                raw = heard.text
                 text = strip_wake_words(raw, c.config.wake_phrase) if verdict.wake_at is not None else raw.strip()
                 await c.emit(TranscriptReady(text, metrics.stt_ms))
                 if not re.search(r"[A-Za-z0-9]", text):
@@ -137,7 +138,7 @@ class CommandTurn:
                 if is_stop_command(text):
                     await c.stopper.stop(text, utt.end, self.id, metrics)
                     return
-                if (unsure := unsure_reason(transcript_of(c.stt.stt, raw), text)) is not None:
+                if (unsure := unsure_reason(heard, text, c.config.confidence)) is not None:
                     c.turns.rearm(utt.end)  # the person may say it again without the wake word
                     self._say(DIDNT_CATCH, "reply")
                     await report_ignored(c.emit, c.stats, unsure, utt, raw)

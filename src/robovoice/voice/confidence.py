@@ -11,43 +11,25 @@ The measure is Whisper's mean token log-probability of the transcript (`avg_logp
 the lowest over segments), chosen over the mean probability of the command's words on
 the dev audio sets (docs/judgement.md): it separated the dev commands buried in noise from
 the clear ones without turning a clear one away; the word probabilities turned away short
-clear commands ("Call Anna." scored 0.06). A transcript without scores (Moonshine) is never
-turned away.
+clear commands ("Call Anna." scored 0.06). The threshold is ``[voice] confidence_min_logprob``
+(-0.6: between the dev set's least sure clear command, -0.54, and its surest command buried
+in noise, -0.69); ``confidence_check = false`` turns the check off. A transcript without
+scores (Moonshine) is never turned away.
 """
 
 from __future__ import annotations
 
 import logging
 import re
-from dataclasses import dataclass
-from typing import Protocol, runtime_checkable
 
 from robovoice.audio.stt import Confidence, Transcript, WordScore
+from robovoice.voice.config import ConfidenceCheck
 
 log = logging.getLogger(__name__)
 
 DIDNT_CATCH = "Sorry, I didn't catch that."
 
 _WORD = re.compile(r"[A-Za-z0-9]+(?:'[A-Za-z]+)?")
-
-
-@runtime_checkable
-class ScoredTranscripts(Protocol):
-    """A transcriber that keeps its recent transcripts, scores included (`WhisperTranscriber`)."""
-
-    def scored(self, text: str) -> Transcript | None: ...
-
-
-@dataclass(frozen=True, slots=True)
-class ConfidenceCheck:
-    """`min_avg_logprob`: a transcript whose mean token log-probability is below it is turned
-    away; None turns the check off. -0.6 lies between the dev set's least sure clear command
-    (-0.54) and its surest command buried in noise (-0.69)."""
-
-    min_avg_logprob: float | None = -0.6
-
-
-DEFAULT_CHECK = ConfidenceCheck()
 
 
 def command_words(confidence: Confidence, text: str) -> list[WordScore]:
@@ -64,10 +46,10 @@ def mean_word_probability(confidence: Confidence, text: str) -> float | None:
     return sum(w.probability for w in words) / len(words) if words else None
 
 
-def unsure_reason(transcript: Transcript | None, text: str, check: ConfidenceCheck = DEFAULT_CHECK) -> str | None:
-    """Why the command `text` (from `transcript`) is too unsure to act on, or None to act.
-    The scores are logged either way (`robovoice -v`)."""
-    if transcript is None or transcript.confidence is None:
+def unsure_reason(transcript: Transcript, text: str, check: ConfidenceCheck) -> str | None:
+    """Why the command `text` (from `transcript`, wake phrase removed) is too unsure to act
+    on, or None to act. The scores are logged either way (`robovoice -v`)."""
+    if transcript.confidence is None:
         return None
     scores = transcript.confidence
     words = mean_word_probability(scores, text)
@@ -76,8 +58,3 @@ def unsure_reason(transcript: Transcript | None, text: str, check: ConfidenceChe
     if check.min_avg_logprob is not None and scores.avg_logprob < check.min_avg_logprob:
         return f"unsure: mean log-probability {scores.avg_logprob:.2f} < {check.min_avg_logprob:.2f}"
     return None
-
-
-def transcript_of(stt: object, raw: str) -> Transcript | None:
-    """The scored transcript whose text is `raw`, when the transcriber keeps them."""
-    return stt.scored(raw) if isinstance(stt, ScoredTranscripts) else None

@@ -89,10 +89,42 @@ class SpeechConfig:
 
 
 @dataclass(frozen=True, slots=True)
+class SpeculationConfig:
+    """Using the end-of-turn silence (`voice.speculate`, docs/voice.md): `early_end`: after a
+    complete request, end the turn after `early_silence_s` of silence instead of the full one;
+    `prefill`: prefill the model on the speculative transcript; `decode`: decode its tool
+    call too (only with `prefill`)."""
+
+    early_end: bool
+    early_silence_s: float
+    prefill: bool
+    decode: bool
+
+    @classmethod
+    def from_config(cls, voice: VoiceConfig) -> SpeculationConfig:
+        return cls(voice.early_end, voice.early_end_silence_ms / 1000.0, voice.speculative_prefill,
+                   voice.speculative_decode)
+
+
+@dataclass(frozen=True, slots=True)
+class ConfidenceCheck:
+    """`min_avg_logprob`: a command transcript whose mean token log-probability is below it
+    is turned away (`voice.confidence`); None turns the check off."""
+
+    min_avg_logprob: float | None
+
+    @classmethod
+    def from_config(cls, voice: VoiceConfig) -> ConfidenceCheck:
+        return cls(voice.confidence_min_logprob if voice.confidence_check else None)
+
+
+@dataclass(frozen=True, slots=True)
 class PipelineConfig:
     """Everything `VoicePipeline` is tuned by. `wake_phrase`: what the wake word says (for
     stripping it from transcripts and for speech-to-text hints); `vocabulary`: extra words for
-    speech-to-text; `stop_timeout_s`: how long a spoken stop waits for the stop tool."""
+    speech-to-text; `stop_timeout_s`: how long a spoken stop waits for the stop tool;
+    `speculation`: what the speculative transcript is used for; `confidence`: which command
+    transcripts are too unsure to act on."""
 
     wake_phrase: str
     wake: WakeDeciderConfig
@@ -102,6 +134,8 @@ class PipelineConfig:
     speech: SpeechConfig
     vocabulary: tuple[str, ...]
     stop_timeout_s: float
+    speculation: SpeculationConfig
+    confidence: ConfidenceCheck
 
     @classmethod
     def from_config(cls, voice: VoiceConfig | None = None) -> PipelineConfig:
@@ -117,4 +151,6 @@ class PipelineConfig:
             speech=SpeechConfig.from_config(voice),
             vocabulary=tuple(voice.vocabulary),
             stop_timeout_s=voice.stop_timeout_s,
+            speculation=SpeculationConfig.from_config(voice),
+            confidence=ConfidenceCheck.from_config(voice),
         )

@@ -2,8 +2,8 @@
 pause is used for before the end of turn is decided.
 
 1. **A shorter silence.** When its words form a complete request (`completeness.is_complete`),
-   the pause may end the utterance after `early_silence_s` instead of the full end-of-turn
-   silence (`HeardPause.end_early`; the endpointer voids it if speech resumes).
+   the pause may end the utterance after `early_silence_s` (``[voice] early_end_silence_ms``)
+   instead of the full end-of-turn silence (`HeardPause.end_early`; the endpointer voids it if speech resumes).
 2. **Speculative prefill.** For an addressed command, the assistant's first model step for those
    words (`Assistant.first_request`) is handed to a backend that can prefill
    (`LocalLlamaBackend.prefill`: the prompt goes into the model's cache, the tool call is
@@ -21,8 +21,10 @@ from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
 from robovoice.assistant.loop import Assistant
+from robovoice.config import VoiceConfig
 from robovoice.llm.base import ChatMessage, ToolSpec
 from robovoice.voice.completeness import is_complete
+from robovoice.voice.config import SpeculationConfig as SpeculationConfig  # the router imports it from here
 from robovoice.voice.listener import HeardPause
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.utterance import Transcription, strip_wake_words
@@ -30,25 +32,9 @@ from robovoice.voice.utterance import Transcription, strip_wake_words
 log = logging.getLogger(__name__)
 
 
-@dataclass(frozen=True, slots=True)
-class SpeculationConfig:
-    """`early_end`: allow the shorter silence after a complete request (`early_silence_s`);
-    `prefill`: prefill the model on the speculative transcript; `decode`: decode its tool call
-    too. Defaults: docs/voice.md, "Using the end-of-turn silence" (measured there)."""
-
-    early_end: bool = True
-    early_silence_s: float = 0.3
-    prefill: bool = True
-    decode: bool = True
-
-    def __post_init__(self) -> None:
-        if not 0.0 < self.early_silence_s <= 5.0:
-            raise ValueError(f"early_silence_s={self.early_silence_s!r}: give seconds in (0, 5], e.g. 0.3")
-
-
-# What a router given no settings uses (the voice config has no keys for these yet); the
-# measurement in `speculate_eval` switches it to compare the prefill off and on.
-default_config = SpeculationConfig()
+# The defaults, for a router built without the pipeline's settings (`Router(speculation=None)`);
+# the settings themselves are `PipelineConfig.speculation`, from the ``[voice]`` keys.
+default_config = SpeculationConfig.from_config(VoiceConfig())
 
 
 @runtime_checkable
@@ -83,7 +69,7 @@ class Speculator:
         await asyncio.wait([transcription])  # its cancellation (speech went on) is not ours
         if transcription.cancelled() or transcription.exception() is not None:
             return
-        raw, _ = transcription.result()
+        raw = transcription.result()[0].text
         text = strip_wake_words(raw, self.wake_phrase) if woken else raw.strip()
         self.stats.transcripts += 1
         if self.config.early_end and is_complete(text):

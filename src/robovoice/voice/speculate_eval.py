@@ -175,6 +175,7 @@ async def sim_hint(wake_phrase: str) -> str:
 async def prefill_ab(turns: int) -> dict[str, object]:
     """`voice.bench.bench_local` (the all-local stack, real-time room) with the speculative
     prefill off, then on; the shorter silence is off in both, so only the prefill differs."""
+    from robovoice.config import VoiceConfig
     from robovoice.voice import bench, speculate
 
     out: dict[str, object] = {}
@@ -183,7 +184,8 @@ async def prefill_ab(turns: int) -> dict[str, object]:
     try:
         for name, prefill in (("without_prefill", False), ("with_prefill", True)):
             # the pipeline builds its router with the default speculation settings: these, for this run
-            speculate.default_config = speculate.SpeculationConfig(early_end=False, prefill=prefill)
+            speculate.default_config = speculate.SpeculationConfig.from_config(
+                VoiceConfig(early_end=False, speculative_prefill=prefill))
             if models is None:
                 from robovoice.voice.models import load_voice_models
 

@@ -17,7 +17,7 @@ from typing import Any
 
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.audio.format import AudioChunk, convert
-from robovoice.audio.stt import Transcriber
+from robovoice.audio.stt import Transcriber, Transcript
 from robovoice.voice.inference import ModelExecutor
 from robovoice.voice.stop import normalise
 
@@ -62,8 +62,8 @@ def trim_to_wake(audio: AudioChunk, wake_at: float | None) -> AudioChunk:
     return AudioChunk(audio.samples[cut:], audio.format, audio.timestamp + cut / audio.format.rate)
 
 
-Transcription = asyncio.Task[tuple[str, float]]
-TaskFactory = Callable[[Coroutine[Any, Any, tuple[str, float]]], Transcription]
+Transcription = asyncio.Task[tuple[Transcript, float]]
+TaskFactory = Callable[[Coroutine[Any, Any, tuple[Transcript, float]]], Transcription]
 
 
 @dataclass(frozen=True, slots=True)
@@ -86,21 +86,28 @@ class Transcribing:
         self.speculated = 0  # speculative runs started
         self.reused = 0  # ... whose transcript was used for the utterance
 
-    async def transcribe(self, audio: AudioChunk, hint: str = "") -> tuple[str, float]:
-        """(text, model milliseconds). `hint`: see `Transcriber.transcribe`."""
+    async def transcribe(self, audio: AudioChunk, hint: str = "") -> tuple[Transcript, float]:
+        """(the transcript, scores included, and the milliseconds it took, waiting for the
+        model's thread included). `hint`: see `Transcriber.transcribe`."""
         started = time.perf_counter()
         transcript = await self._executor.run(self.stt.transcribe, audio, hint)
-        return transcript.text, (time.perf_counter() - started) * 1000.0
+        return transcript, (time.perf_counter() - started) * 1000.0
+
+    async def transcript_for(
+        self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None, hint: str
+    ) -> Transcript:
+        """The transcript of `audio`: the speculative run's when it covers the utterance,
+        else a run now; its time and the ``transcript`` mark go into `metrics`."""
+        transcript, took_ms = await speculation if speculation is not None else await self.transcribe(audio, hint)
+        metrics.stt_ms += took_ms
+        metrics.mark("transcript", max(metrics.start, time.perf_counter()))
+        return transcript
 
     async def text_for(
         self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None, hint: str
     ) -> str:
-        """The transcript of `audio`: the speculative run's when it covers the utterance,
-        else a run now; its model time and the ``transcript`` mark go into `metrics`."""
-        text, took_ms = await speculation if speculation is not None else await self.transcribe(audio, hint)
-        metrics.stt_ms += took_ms
-        metrics.mark("transcript", max(metrics.start, time.perf_counter()))
-        return text
+        """`transcript_for`'s text (a stop check needs no scores)."""
+        return (await self.transcript_for(audio, metrics, speculation, hint)).text
 
     def speculate(
         self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory, hint: str = ""
