@@ -55,10 +55,14 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
     voice = sub.add_parser("voice", help="the user's last word → first audio out, all-local, per stage (also from "
                                          "the end-of-turn decision), against the naive chain of the same models; "
-                                         "or the pipeline's own overhead with instant model fakes")
-    voice.add_argument("which", nargs="?", choices=["local", "overhead"], default="local")
+                                         "or the pipeline's own overhead with instant model fakes; or spoken "
+                                         "stops while the sim robot drives (last word -> the robot)")
+    voice.add_argument("which", nargs="?", choices=["local", "overhead", "stops"], default="local")
     voice.add_argument("--turns", type=positive_int,
-                       help="turns to measure (default: the 22 bench commands once for local, 30 overhead)")
+                       help="turns to measure (default: the 22 bench commands once for local, 30 overhead, "
+                            "12 stops)")
+    voice.add_argument("--stop-wav", type=existing_file, action="append", default=[],
+                       help="stops: a recorded stop clip (repeatable; default: six stop phrases spoken by Piper)")
     voice.add_argument("--no-naive", action="store_true", help="local: skip the naive chain (no ratio)")
     voice.add_argument("--json", action="store_true", help="(the output is JSON either way)")
     voice.set_defaults(run=_voice)
@@ -156,6 +160,10 @@ def _voice(args: argparse.Namespace) -> int:
 
     if args.which == "overhead":
         return _print(asyncio.run(bench_overhead(args.turns or 30)))
+    if args.which == "stops":
+        from robovoice.voice.bench_stops import bench_stops
+
+        return _print(asyncio.run(bench_stops(args.turns or 12, wavs=args.stop_wav)))
     return _print(asyncio.run(bench_local(args.turns or len(LOCAL_COMMANDS), naive=not args.no_naive)))
 
 

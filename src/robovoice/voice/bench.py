@@ -14,10 +14,14 @@
   executors, the assistant loop, the speech queue), plus the front end's CPU per second of
   audio.
 
+- `bench_stops.bench_stops`: spoken stops while the sim robot drives, from the last word to
+  the robot (issue 12's 0.5 s).
+
     python -m robovoice.voice.bench overhead --turns 30
     python -m robovoice.voice.bench local --turns 22
+    python -m robovoice.voice.bench stops --turns 12
 
-(The same as ``robovoice bench voice overhead|local --json``.)
+(The same as ``robovoice bench voice overhead|local|stops --json``.)
 """
 
 from __future__ import annotations
@@ -326,12 +330,16 @@ async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels |
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="python -m robovoice.voice.bench", description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("which", choices=["overhead", "local"])
+    parser.add_argument("which", choices=["overhead", "local", "stops"])
     parser.add_argument("--turns", type=int, default=None)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.WARNING)
     if args.which == "overhead":
         result = asyncio.run(bench_overhead(args.turns or 30))
+    elif args.which == "stops":
+        from robovoice.voice.bench_stops import bench_stops
+
+        result = asyncio.run(bench_stops(args.turns or 12))
     else:
         result = asyncio.run(bench_local(args.turns or len(LOCAL_COMMANDS)))
     print(json.dumps(result, indent=1))  # the module's command-line entry point prints its result
