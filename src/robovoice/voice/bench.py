@@ -47,7 +47,9 @@ from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer, ToneWakeDetector
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat, convert, float32_to_int16
 from robovoice.audio.format import silence as make_silence
 from robovoice.audio.stt import Transcript
+from robovoice.config import VoiceConfig
 from robovoice.llm.base import ChatMessage, Finished, LLMEvent, TextDelta, ToolSpec
+from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import PipelineEvent, VoiceTurnFinished, VoiceTurnStarted
 from robovoice.voice.models import VoiceModels
 from robovoice.voice.pipeline import VoicePipeline
@@ -243,9 +245,10 @@ async def naive_turn(models: VoiceModels, assistant: Assistant, clip: AudioChunk
 
 async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels | None = None,
                       sim_speed: float = 10.0, commands: Sequence[str] = LOCAL_COMMANDS,
-                      naive: bool = True) -> dict[str, Any]:
+                      naive: bool = True, voice: VoiceConfig | None = None) -> dict[str, Any]:
     """The all-local stack, from spoken commands to first audio out, per stage, from the last
-    word and from the end-of-turn decision; then the naive chain on the same clips."""
+    word and from the end-of-turn decision; then the naive chain on the same clips. `voice`:
+    the ``[voice]`` settings (default: their defaults)."""
     from robovoice.assistant.connect import connect_robot
     from robovoice.assistant.prompt import SYSTEM_PROMPT
     from robovoice.config import RobotConfig
@@ -281,7 +284,8 @@ async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels |
             room = SimulatedRoom()  # real time: stream time and the wall clock advance together
             pipeline = VoicePipeline(models, local, link.tools, source=room.mic, sink=room.speaker,
                                      reference=room.reference, observer=observe,
-                                     moving=(lambda: sim.state.moving) if sim is not None else None)
+                                     moving=(lambda: sim.state.moving) if sim is not None else None,
+                                     config=PipelineConfig.from_config(voice))
             naive_assistant = Assistant(local, naive_link.tools)
 
             async def naive_after(clip: AudioChunk) -> None:
