@@ -4,6 +4,8 @@ my way" is not), and a spoken stop that lands after the drive arrived stopped no
 
 from __future__ import annotations
 
+from typing import Any
+
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.assistant.loop import TurnResult
 from robovoice.assistant.metrics import TurnMetrics
@@ -14,8 +16,9 @@ from robovoice.voice.events import PipelineEvent, RobotStopped, UtteranceIgnored
 
 KITCHEN = Command("drive", "Hey Jarvis, go to the kitchen.", "navigate_to", place="kitchen")
 STOP = Command("stop", "Hey Jarvis, go to the front door.", "navigate_to", follow=STOP_LINE)
-LOW = {"error": "battery_low", "message": "the battery is critically low (3.2 %): the robot only drives to its "
-       "charging dock", "hint": "tell the user the battery is too low", "details": {"battery_percent": 3.2}}
+LOW_TEXT = "the battery is critically low (3.2 %): the robot only drives to its charging dock"
+LOW: dict[str, Any] = {"error": "battery_low", "message": LOW_TEXT, "hint": "tell the user the battery is too low",
+                       "details": {"battery_percent": 3.2}}
 
 
 def _state(place: str, battery: float = 3.2) -> SimState:
@@ -26,7 +29,7 @@ def _state(place: str, battery: float = 3.2) -> SimState:
 
 def _refused_drive(reply: str) -> list[PipelineEvent]:
     called = ToolCalled("c1", "navigate_to", {"target": "kitchen"})
-    returned = ToolReturned("c1", "navigate_to", LOW["message"], True, 3.0, "battery_low", LOW)
+    returned = ToolReturned("c1", "navigate_to", LOW_TEXT, True, 3.0, "battery_low", LOW)
     result = TurnResult(reply, (called,), (returned,), TurnMetrics())
     return [called, returned, VoiceTurnFinished(1, result, cancelled=False)]
 
