@@ -6,6 +6,7 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
+import signal
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -15,7 +16,7 @@ from robovoice.soak import SoakReport, SoakSettings, run_soak, write_memory_plot
 log = logging.getLogger(__name__)
 
 
-async def soak_with_embedded_model(settings: SoakSettings) -> SoakReport:
+async def soak_with_embedded_model(settings: SoakSettings, ending: asyncio.Event | None = None) -> SoakReport:
     from robovoice.assistant.prompt import SYSTEM_PROMPT
     from robovoice.llm.base import ToolSpec
     from robovoice.llm.local import LocalLlamaBackend
@@ -28,9 +29,28 @@ async def soak_with_embedded_model(settings: SoakSettings) -> SoakReport:
         return await backend.warm_up(SYSTEM_PROMPT, specs)
 
     try:
-        return await run_soak(models, backend, settings, warm_up=warm_up)
+        return await run_soak(models, backend, settings, warm_up=warm_up, ending=ending)
     finally:
         await backend.aclose()
+
+
+async def _until_signalled(settings: SoakSettings) -> SoakReport:
+    """The soak; SIGINT or SIGTERM ends it early (after the command under way) with its report,
+    so a long run can be read before its end."""
+    ending = asyncio.Event()
+    loop = asyncio.get_running_loop()
+
+    def end(signame: str) -> None:
+        log.warning("%s: the soak ends after the command under way and reports what it has", signame)
+        ending.set()
+
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, end, sig.name)
+    try:
+        return await soak_with_embedded_model(settings, ending)
+    finally:
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            loop.remove_signal_handler(sig)
 
 
 def summary(report: SoakReport) -> str:
@@ -55,7 +75,7 @@ def summary(report: SoakReport) -> str:
         f"gc objects {m['gc_objects_growth_pct_per_hour']} %/h; fds {m['fds_first_last']}",
         f"left behind: tasks {lk['tasks_left']} ({lk['tasks_before']} -> {lk['tasks_after']}), "
         f"threads {lk['threads_left']} ({lk['threads_before']} -> {lk['threads_after']})",
-        f"goals met: {report.ok}",
+        f"goals met: {report.ok}" + (" (ended early: a partial run)" if report.settings.get("ended_early") else ""),
     ]
     return "\n".join(lines)
 
@@ -71,7 +91,7 @@ def run_soak_command(*, hours: float, seed: int, gap_minutes: float, sample_minu
     handler.setFormatter(logging.Formatter("%(asctime)s %(message)s"))
     progress.addHandler(handler)
     try:
-        report = asyncio.run(soak_with_embedded_model(settings))
+        report = asyncio.run(_until_signalled(settings))
     finally:
         progress.removeHandler(handler)
     if plot is not None and report.samples:

@@ -162,9 +162,10 @@ async def _wait(predicate: Any, run: _Run, timeout: float) -> bool:
     return True
 
 
-async def _background(run: _Run, sounds: SoakSounds, rng: np.random.Generator, seconds: float) -> None:
+async def _background(run: _Run, sounds: SoakSounds, rng: np.random.Generator, seconds: float,
+                      ending: asyncio.Event) -> None:
     end = run.room.now + seconds
-    while run.room.now < end - 1.0:
+    while run.room.now < end - 1.0 and not ending.is_set():
         piece = min(end - run.room.now, float(rng.uniform(20.0, 90.0)))
         kind = str(rng.choice(BACKGROUND_KINDS, p=np.array(BACKGROUND_WEIGHTS) / sum(BACKGROUND_WEIGHTS)))
         if kind == "quiet":
@@ -175,15 +176,15 @@ async def _background(run: _Run, sounds: SoakSounds, rng: np.random.Generator, s
 
 
 async def _script(run: _Run, settings: SoakSettings, sounds: SoakSounds, rng: np.random.Generator,
-                  commands: Sequence[Command] | None) -> None:
+                  commands: Sequence[Command] | None, ending: asyncio.Event) -> None:
     end = settings.hours * 3600.0
     given = iter(commands) if commands is not None else None
     try:
         await run.room.until(run.room.now + 0.5, NEVER)
-        while run.room.now < end:
+        while run.room.now < end and not ending.is_set():
             gap = max(20.0, float(rng.exponential(settings.mean_gap_minutes * 60.0)))
-            await _background(run, sounds, rng, min(gap, end - run.room.now))
-            if run.room.now >= end:
+            await _background(run, sounds, rng, min(gap, end - run.room.now), ending)
+            if run.room.now >= end or ending.is_set():
                 break
             cmd = next_command(rng, run.sim.state) if given is None else next(given, None)
             if cmd is None:
@@ -210,11 +211,13 @@ async def _sampler(room: SimulatedRoom, samples: list[Sample], every_s: float, w
 
 async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSettings = SoakSettings(), *,
                    warm_up: Callable[[Sequence[ToolSpec]], Awaitable[Any]] | None = None,
-                   commands: Sequence[Command] | None = None) -> SoakReport:
+                   commands: Sequence[Command] | None = None, ending: asyncio.Event | None = None) -> SoakReport:
     """See the module docstring. `backend` is used, not closed; `warm_up` is given the robot's
     tools before the first sound (the embedded model evaluates its prompt prefix then).
     `commands`: these, in order (then the run ends), instead of the random script: a test
-    gives the one scenario it looks at."""
+    gives the one scenario it looks at. `ending`: once set, the run ends early (after the
+    command under way) and reports what it has, marked `ended_early`."""
+    ending = ending or asyncio.Event()
     rng = np.random.default_rng(settings.seed)
     sounds = SoakSounds(models.tts, rng)
     tally = Tally()
@@ -256,7 +259,7 @@ async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSetti
                     group.create_task(pipeline.run(finish_timeout_s=30.0), name="soak-pipeline")
                     sampler = group.create_task(_sampler(room, samples, settings.sample_minutes * 60.0, wall0, tally),
                                                 name="soak-sampler")
-                    await _script(run, settings, sounds, rng, commands)
+                    await _script(run, settings, sounds, rng, commands, ending)
                     sampler.cancel()
             except Exception as exc:  # the report says the run crashed, with what
                 log.exception("the soak run failed")
@@ -272,7 +275,8 @@ async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSetti
     finally:
         loop.set_exception_handler(previous_handler)
         logging.getLogger().removeHandler(counter)
-    return SoakReport.build(settings_dict(settings), tally, samples, time.perf_counter() - wall0,
+    return SoakReport.build({**settings_dict(settings), "ended_early": ending.is_set()}, tally, samples,
+                            time.perf_counter() - wall0,
                             settings.warm_up_minutes * 60.0, tv_voice=sounds.tv_voice)
 
 

@@ -114,8 +114,9 @@ def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> Non
     if cmd.kind == "stop":
         outcome.answered = bool(stops) and stops[-1].ok
         # what was heard instead says why (e.g. a transcript that is no stop, or one too late)
-        heard = "; ".join(f"{e.reason} {e.text!r} at {e.start:.1f}-{e.end:.1f} s" for e in events
-                          if isinstance(e, UtteranceIgnored) and e.reason != "no_wake_word")
+        # (no_wake_word: heard when the robot was no longer moving, so not checked for a stop)
+        heard = "; ".join(f"{e.reason}{'' if e.text is None else ' ' + repr(e.text)} at {e.start:.1f}-{e.end:.1f} s"
+                          for e in events if isinstance(e, UtteranceIgnored))
         problem = None if outcome.answered else "the spoken stop did not reach the robot" + (
             f" (heard: {heard})" if heard else "")
         if problem is None and state.moving:
