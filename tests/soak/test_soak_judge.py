@@ -80,3 +80,10 @@ def test_a_stop_that_halted_the_drive_is_done() -> None:
     outcome = Outcome(STOP, 10.0)
     judge(outcome, events, _state("hallway", battery=50.0))
     assert outcome.done, outcome.problem
+
+
+def test_a_stop_whose_drive_never_started_says_so() -> None:
+    # at load 24 the model missed its first-token deadline: no drive, so no stop line was said
+    outcome = Outcome(STOP, 10.0)
+    judge(outcome, [], _state("kitchen", battery=50.0))
+    assert outcome.problem == "the drive never started"

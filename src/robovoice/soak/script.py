@@ -117,15 +117,16 @@ def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> Non
         # (no_wake_word: heard when the robot was no longer moving, so not checked for a stop)
         heard = "; ".join(f"{e.reason}{'' if e.text is None else ' ' + repr(e.text)} at {e.start:.1f}-{e.end:.1f} s"
                           for e in events if isinstance(e, UtteranceIgnored))
-        problem = None if outcome.answered else "the spoken stop did not reach the robot" + (
-            f" (heard: {heard})" if heard else "")
+        problem: str | None = None
+        if "navigate_to" not in outcome.calls:
+            problem = "the drive never started"  # so the stop line was never said
+        elif not outcome.answered:
+            problem = "the spoken stop did not reach the robot" + (f" (heard: {heard})" if heard else "")
         if problem is None and state.moving:
             problem = "the robot is still moving after the stop"
         if problem is None and any(isinstance(e, ToolReturned) and e.name == "navigate_to" and not e.is_error
                                    for e in events):
             problem = "the drive arrived: the stop came after it had ended"
-        if problem is None and "navigate_to" not in outcome.calls:
-            problem = "the drive never started"
     else:
         outcome.answered = bool(replied)
         problem = None if outcome.answered else "no turn finished with a reply"
