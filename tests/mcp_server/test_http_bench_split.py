@@ -8,6 +8,7 @@ import time
 
 import pytest
 
+from robovoice.mcp_server.bench_inprocess import inprocess_split
 from robovoice.mcp_server.bench_split import bench_split, format_split, server_cpu_s
 
 SERIES = ["sdk_2025", "sdk_2026", "raw_2025", "raw_2026", "http_echo"]
@@ -35,3 +36,9 @@ def test_server_cpu_counts_this_process_working() -> None:
 async def test_bad_counts_are_refused() -> None:
     with pytest.raises(ValueError, match="at least 1"):
         await bench_split(n=0)
+
+
+async def test_the_server_side_alone_is_measured_in_process() -> None:
+    cpu_ms = await inprocess_split(n=3, rounds=1)  # each response is checked as it comes back
+    assert list(cpu_ms) == ["2025 session tools/call", "2026-07-28 tools/call", "HTTP echo app", "call_tool alone"]
+    assert all(value > 0 for value in cpu_ms.values())

@@ -14,6 +14,10 @@ For each: wall-clock p50 and mean, **client CPU** per call (this process, `time.
 and **server CPU** per call (the serving child's user + system time from ``/proc/PID/stat``,
 in clock ticks: at 100 Hz, 1200 calls resolve 0.008 ms). CPU time is much less disturbed than
 wall time by other jobs on a loaded machine, which makes it the better split.
+
+``--in-process``: the server side alone, no network and no client: the ASGI app of
+`build_http_app` (audit on) called directly with the same requests, against the HTTP echo's
+app and `RobotToolServer.call_tool` alone; CPU per call of this process.
 """
 
 from __future__ import annotations
@@ -34,6 +38,7 @@ import httpx2
 from mcp import Client
 
 from robovoice.mcp_server.bench_floor import PAYLOAD
+from robovoice.mcp_server.bench_inprocess import inprocess_split
 from robovoice.mcp_server.tcp import nodelay_transport
 
 WARMUP: Final = 30
@@ -185,13 +190,27 @@ def format_split(report: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def format_inprocess(report: dict[str, Any]) -> str:
+    lines = [f"Server side in process (no network, no client), {report['n']} x {report['rounds']} calls per series "
+             f"(load average {report['load_before']} -> {report['load_after']}); CPU ms per call"]
+    lines += [f"  {name:<22} {cpu:8.3f}" for name, cpu in report["cpu_ms"].items()]
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(prog="python -m robovoice.mcp_server.bench_split",
                                      description="Client vs server time of an MCP call over streamable HTTP.")
     parser.add_argument("-n", type=int, default=300, help="calls per series per round (default 300)")
     parser.add_argument("--rounds", type=int, default=4, help="rounds over all series (default 4)")
+    parser.add_argument("--in-process", action="store_true", help="the server side alone, ASGI calls in process")
     args = parser.parse_args(argv)
-    print(format_split(asyncio.run(bench_split(args.n, args.rounds))))
+    if args.in_process:
+        load_before = _loadavg()
+        cpu_ms = asyncio.run(inprocess_split(args.n, args.rounds))
+        print(format_inprocess({"n": args.n, "rounds": args.rounds, "cpu_ms": cpu_ms, "load_before": load_before,
+                                "load_after": _loadavg()}))
+    else:
+        print(format_split(asyncio.run(bench_split(args.n, args.rounds))))
 
 
 if __name__ == "__main__":
