@@ -38,6 +38,11 @@ from robovoice.voice.echo import BlockStats, EchoCanceller, PlaybackReference
 log = logging.getLogger(__name__)
 
 FRAME_SAMPLES = 1280  # 80 ms: one wake word frame, five echo canceller blocks
+# How far back a wake word detection reaches: the phrase (~1 s) and the detector's latency. A
+# detection at t is about audio from t - WAKE_WINDOW_S on, so it counts as said during playback
+# when anything played in that window, even if the playback (a sentence ending in "Hey Jarvis",
+# the next one not yet synthesised) stopped before the detector fired.
+WAKE_WINDOW_S = 1.2
 _REF_ACTIVE = 1e-8  # reference power above which the speaker counts as playing (-80 dBFS)
 
 
@@ -206,6 +211,10 @@ class Listener:
     def playing_at(self, t: float) -> bool:
         return self.external_playback or t - self._last_playback <= self._tail
 
+    def _playing_during(self, start: float, end: float) -> bool:
+        """Playback (or its echo tail) sounded at some moment from `start` to `end`."""
+        return self.playing_at(end) or self._last_playback >= start - self._tail
+
     def process(self, chunk: AudioChunk) -> Heard:
         """Blocking: run every complete 80 ms frame of `chunk` (16 kHz mono)."""
         if chunk.format.rate != MODEL_FORMAT.rate or chunk.format.channels != 1:
@@ -242,11 +251,12 @@ class Listener:
                 cleaned = AudioChunk(float32_to_int16(out), MODEL_FORMAT, t0)
             elif float(np.mean(ref * ref)) > _REF_ACTIVE:
                 self._last_playback = t1
-        playing = self.playing_at(t1)
+        # the raised threshold holds while the audio the detector scores holds playback
+        playing = self._playing_during(t1 - WAKE_WINDOW_S, t1)
         self.spotter.decider.set_threshold(self.config.playback_wake_threshold if playing else None)
         events: list[HeardEvent] = []
         for wake in self.spotter.feed(cleaned):
-            during = self.playing_at(wake.timestamp)
+            during = self._playing_during(wake.timestamp - WAKE_WINDOW_S, wake.timestamp)
             near, own = True, 0.0
             if during:
                 own = self._playback_score(wake.timestamp)
@@ -318,8 +328,8 @@ class Listener:
             self._playback_scores.popleft()
 
     def _playback_score(self, at: float) -> float:
-        """The playback's highest wake score in the 1.2 s up to `at` (and one frame after)."""
-        return max((s for t, s in self._playback_scores if at - 1.2 <= t <= at + 0.1), default=0.0)
+        """The playback's highest wake score in the wake window up to `at` (and one frame after)."""
+        return max((s for t, s in self._playback_scores if at - WAKE_WINDOW_S <= t <= at + 0.1), default=0.0)
 
     def _utterance(self, ended: SpeechEnded) -> HeardUtterance:
         share, near = self.meter.judge(ended.start, ended.end)
