@@ -71,13 +71,13 @@ def answers_with_json(scope: Scope, body: bytes) -> bool:
     header the handshake does not own, as the SDK routes it) whose client accepts JSON and SSE,
     one JSON-RPC request other than ``subscriptions/listen``, without a ``progressToken``."""
     version: bytes | None = None
-    accept = b""
-    for name, value in scope.get("headers", ()):
-        if name == _VERSION_HEADER:
+    accept: bytes | None = None
+    for name, value in scope.get("headers", ()):  # the first of each, as the SDK reads them
+        if name == _VERSION_HEADER and version is None:
             version = value
-        elif name == b"accept":
+        elif name == b"accept" and accept is None:
             accept = value
-    if version is None or version.decode("latin-1") in HANDSHAKE_PROTOCOL_VERSIONS or not _accepts_both(accept):
+    if version is None or version.decode("latin-1") in HANDSHAKE_PROTOCOL_VERSIONS or not _accepts_both(accept or b""):
         return False
     try:
         message = json.loads(body)
