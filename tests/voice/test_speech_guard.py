@@ -3,6 +3,7 @@ the real voice pipeline (model fakes, the sim robot over MCP) with backends that
 
 from __future__ import annotations
 
+import json
 import logging
 from collections.abc import AsyncGenerator, Sequence
 from dataclasses import replace
@@ -14,6 +15,7 @@ from robovoice.audio.fakes import ToneSynthesizer
 from robovoice.commands.text import shown_reply
 from robovoice.llm.base import ChatMessage, Finished, LLMEvent, TextDelta, ToolSpec
 from robovoice.llm.fake_server import (
+    CallbackReply,
     FakeOpenAIServer,
     Quirks,
     ScriptedCall,
@@ -157,3 +159,28 @@ async def test_the_voice_pipeline_acts_on_calls_a_server_wrote_as_text(
     assert spoken[-1] == "The projector is now on."  # its success phrase: no second model step
     assert_clean(spoken)
     assert_clean(tts.texts)
+
+
+async def test_the_voice_pipeline_never_speaks_the_gate_hint_the_model_reads_out(
+    fakes: VoiceModels, transcriber: SettableTranscriber, caplog: pytest.LogCaptureFixture
+) -> None:
+    """Issue 11: the model reads the refusal's hint out before its own answer."""
+    from ..assistant.test_model_only_text import echo_the_hint
+
+    models, tts = recording_models(fakes)
+    transcriber.text = "Hey Jarvis, don't drive to the bathroom just now."
+    with caplog.at_level(logging.WARNING, logger="robovoice.voice.speech"):
+        async with FakeOpenAIServer(default=CallbackReply(echo_the_hint)) as server:
+            backend = OpenAICompatBackend(server.base_url, server.model)
+            try:
+                async with voice_session(models, backend, speed=2.0) as s:
+                    await s.say(wake_command())
+                    await s.log.wait_for(VoiceTurnFinished)
+                    await s.settle()
+                    assert not s.sim.state.moving
+            finally:
+                await backend.aclose()
+    hint = json.loads(server.requests[1].messages[-1]["content"])["hint"]
+    spoken = [e.text for e in s.log.of(SentenceSpoken)]
+    assert spoken == ["All right, I will stay here."] and tts.texts == spoken
+    assert "the model's instructions" in caplog.text and hint.split(".")[0] in caplog.text

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import logging
 
-from robovoice.assistant.speech_guard import tool_syntax_in, without_end_marker
+from robovoice.assistant.speech_guard import unspeakable_in, without_end_marker
 
 log = logging.getLogger(__name__)
 
@@ -20,7 +20,8 @@ def shown_reply(sentence: str) -> str | None:
     """An assistant sentence as the terminal shows it, or None (logged) when it carries tool-call
     syntax: raw ``functions.x:`` or ``<tool_call>`` text is never printed as the robot's words."""
     sentence = without_end_marker(sentence)
-    if (syntax := tool_syntax_in(sentence)) is not None:
-        log.warning("not showing a sentence with tool-call syntax %r: %r", syntax, sentence[:200])
+    if (unspeakable := unspeakable_in(sentence)) is not None:
+        log.warning("not showing a sentence with the model's instructions or tool-call syntax %r: %r",
+                    unspeakable, sentence[:200])
         return None
     return sentence if sentence.strip() else None

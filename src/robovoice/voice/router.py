@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import logging
 
-from robovoice.voice import speculate
 from robovoice.voice.command import Commands
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import BargedIn, Emit, WakeWordHeard, WakeWordRejected
@@ -66,7 +65,7 @@ class Router:
         self.floor = floor
         self.stats = stats
         self.emit = emit
-        self.speculator = Speculator(speculation or speculate.default_config, commands.assistant, config.wake_phrase)
+        self.speculator = Speculator(speculation or config.speculation, commands.assistant, config.wake_phrase)
 
     async def handle(self, heard: Heard, received: float) -> None:
         """What the listener heard in one chunk; `received`: when the chunk arrived."""

@@ -21,7 +21,6 @@ from dataclasses import dataclass
 from typing import Protocol, runtime_checkable
 
 from robovoice.assistant.loop import Assistant
-from robovoice.config import VoiceConfig
 from robovoice.llm.base import ChatMessage, ToolSpec
 from robovoice.voice.completeness import is_complete
 from robovoice.voice.config import SpeculationConfig as SpeculationConfig  # the router imports it from here
@@ -30,11 +29,6 @@ from robovoice.voice.stop import is_stop_command
 from robovoice.voice.utterance import Transcription, strip_wake_words
 
 log = logging.getLogger(__name__)
-
-
-# The defaults, for a router built without the pipeline's settings (`Router(speculation=None)`);
-# the settings themselves are `PipelineConfig.speculation`, from the ``[voice]`` keys.
-default_config = SpeculationConfig.from_config(VoiceConfig())
 
 
 @runtime_checkable

@@ -176,25 +176,19 @@ async def prefill_ab(turns: int) -> dict[str, object]:
     """`voice.bench.bench_local` (the all-local stack, real-time room) with the speculative
     prefill off, then on; the shorter silence is off in both, so only the prefill differs."""
     from robovoice.config import VoiceConfig
-    from robovoice.voice import bench, speculate
+    from robovoice.voice import bench
 
     out: dict[str, object] = {}
-    original = speculate.default_config
     models = None
-    try:
-        for name, prefill in (("without_prefill", False), ("with_prefill", True)):
-            # the pipeline builds its router with the default speculation settings: these, for this run
-            speculate.default_config = speculate.SpeculationConfig.from_config(
-                VoiceConfig(early_end=False, speculative_prefill=prefill))
-            if models is None:
-                from robovoice.voice.models import load_voice_models
+    for name, prefill in (("without_prefill", False), ("with_prefill", True)):
+        if models is None:
+            from robovoice.voice.models import load_voice_models
 
-                models = await asyncio.to_thread(load_voice_models)
-            result = await bench.bench_local(turns, models=models, naive=False)
-            out[name] = {k: result[k] for k in ("turns", "speech_end_to_first_audio_ms", "stages_from_speech_end",
-                                                "stages_from_end_of_turn_decision", "machine")}
-    finally:
-        speculate.default_config = original
+            models = await asyncio.to_thread(load_voice_models)
+        result = await bench.bench_local(turns, models=models, naive=False,
+                                         voice=VoiceConfig(early_end=False, speculative_prefill=prefill))
+        out[name] = {k: result[k] for k in ("turns", "speech_end_to_first_audio_ms", "stages_from_speech_end",
+                                            "stages_from_end_of_turn_decision", "machine")}
     return out
 
 

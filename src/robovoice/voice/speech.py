@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from robovoice.assistant.events import notify
 from robovoice.assistant.metrics import TurnMetrics
-from robovoice.assistant.speech_guard import tool_syntax_in, without_end_marker
+from robovoice.assistant.speech_guard import unspeakable_in, without_end_marker
 from robovoice.audio.format import AudioChunk, AudioFormat, concat, convert
 from robovoice.audio.streams import AudioSink
 from robovoice.audio.tts import Synthesizer
@@ -93,12 +93,13 @@ class SpeechOutput:
         self, text: str, *, turn: int | None = None, kind: str = "reply", metrics: TurnMetrics | None = None
     ) -> int | None:
         """Queue `text`; its handle (for `withdraw`), None when there is nothing to say (or it
-        carries tool-call syntax, which is never spoken: `speech_guard`)."""
+        carries tool-call syntax or the model's instructions, never spoken: `speech_guard`)."""
         text = without_end_marker(text).strip()
         if not text:
             return None
-        if (syntax := tool_syntax_in(text)) is not None:
-            log.warning("not speaking a sentence with tool-call syntax %r: %r", syntax, text[:200])
+        if (unspeakable := unspeakable_in(text)) is not None:
+            log.warning("not speaking a sentence with tool-call syntax or the model's instructions %r: %r",
+                        unspeakable, text[:200])
             return None
         handle = next(self._handles)
         self._pending += 1
