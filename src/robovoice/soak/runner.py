@@ -128,6 +128,10 @@ async def _give(run: _Run, cmd: Command, sounds: SoakSounds, timeout: float) -> 
         await room.say(sounds.command(cmd.say), gap_s=0.3).finished(timeout)
         if cmd.follow is not None and cmd.kind == "stop":
             if await _wait(lambda: sim.state.moving, run, 60.0):
+                # said once the robot's own "On my way…" has ended: over it, Whisper tiny merges both
+                # ("On my way, stop for the robot!", not a stop); a stop over the robot's voice is a
+                # barge-in, which the soak gives apart
+                await _wait(lambda: not pipeline.speech.busy, run, 30.0)
                 await room.until(room.now + 0.5, timeout)
                 await room.say(sounds.command(cmd.follow)).finished(timeout)
                 await run.wait_event(RobotStopped, 20.0)
