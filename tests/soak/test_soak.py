@@ -6,29 +6,16 @@ from __future__ import annotations
 
 import struct
 import zlib
-from collections.abc import AsyncIterator
 from pathlib import Path
 
 import pytest
 
-from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.soak import SoakSettings, run_soak, write_memory_plot
 from robovoice.soak.cli import summary
 from robovoice.voice.models import VoiceModels
 
-from ..voice.voice_kit import keyword_router
-
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(900)]  # ~1 min on a quiet machine; 7 at load 32
-
-
-@pytest.fixture
-async def backend() -> AsyncIterator[OpenAICompatBackend]:
-    async with FakeOpenAIServer() as server:
-        server.default = CallbackReply(keyword_router)
-        b = OpenAICompatBackend(server.base_url, server.model)
-        yield b
-        await b.aclose()
 
 
 async def test_a_short_soak_answers_commands_and_reports(voice_models: VoiceModels, backend: OpenAICompatBackend,

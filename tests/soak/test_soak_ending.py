@@ -5,27 +5,16 @@ or SIGTERM) stops after the command under way and still reports, marked as ended
 from __future__ import annotations
 
 import asyncio
-from collections.abc import AsyncIterator
 
 import pytest
 
-from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.soak import SoakSettings, run_soak
 from robovoice.soak.cli import summary
 
-from ..voice.voice_kit import fake_models, keyword_router
+from ..voice.voice_kit import fake_models
 
 pytestmark = [pytest.mark.timeout(300)]
-
-
-@pytest.fixture
-async def backend() -> AsyncIterator[OpenAICompatBackend]:
-    async with FakeOpenAIServer() as server:
-        server.default = CallbackReply(keyword_router)
-        b = OpenAICompatBackend(server.base_url, server.model)
-        yield b
-        await b.aclose()
 
 
 async def test_a_soak_asked_to_end_reports_what_it_has(backend: OpenAICompatBackend) -> None:

@@ -8,12 +8,9 @@ action nobody asked for); a robot whose battery is low is sent to its charging d
 
 from __future__ import annotations
 
-from collections.abc import AsyncIterator
-
 import numpy as np
 import pytest
 
-from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.sim import SimState
 from robovoice.sim.body import DEFAULT_MAX_SPEED_MPS, Pose
@@ -26,18 +23,7 @@ from robovoice.voice.models import VoiceModels
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.vocabulary import STOP_HINT
 
-from ..voice.voice_kit import keyword_router
-
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(600)]
-
-
-@pytest.fixture
-async def backend() -> AsyncIterator[OpenAICompatBackend]:
-    async with FakeOpenAIServer() as server:
-        server.default = CallbackReply(keyword_router)
-        b = OpenAICompatBackend(server.base_url, server.model)
-        yield b
-        await b.aclose()
 
 
 def test_the_soaks_stop_line_as_whisper_hears_it_is_a_stop(voice_models: VoiceModels) -> None:
