@@ -39,6 +39,8 @@ from mcp.shared.inbound import MCP_PROTOCOL_VERSION_HEADER
 from mcp_types.version import HANDSHAKE_PROTOCOL_VERSIONS
 from starlette.types import ASGIApp, Message, Receive, Scope, Send
 
+from robovoice.mcp_server.limits import replaying
+
 KEEPALIVE_S: Final = 15.0
 """Seconds of silence before a JSON-mode call commits to SSE and pings (the SDK's interval)."""
 
@@ -117,7 +119,7 @@ class JsonFirst:
         first = await receive()
         body = first.get("body", b"") if first["type"] == "http.request" and not first.get("more_body") else None
         if body is None or not answers_with_json(scope, body):
-            await self.app(scope, _replay(first, receive), send)
+            await self.app(scope, replaying(first, receive), send)
             return
         exchange = _Exchange(send, scope, self.keepalive_s)
         token = _JSON_MODE.set(True)
@@ -155,7 +157,7 @@ class _Exchange:
             self._timers.append(loop.call_later(min(WATCH_AFTER_S, self._keepalive_s), self._start_watching,
                                                 receive, cancel, gone))
             try:
-                await app(scope, _replay({"type": "http.request", "body": body, "more_body": False}, rest), self.send)
+                await app(scope, replaying({"type": "http.request", "body": body, "more_body": False}, rest), self.send)
             finally:
                 self._finished = True
                 for timer in self._timers:
@@ -215,17 +217,3 @@ class _Exchange:
             async with self._lock:
                 await self._send({"type": "http.response.body", "body": f"event: message\r\n{lines}\r\n".encode(),
                                   "more_body": False})
-
-
-def _replay(first: Message, rest: Receive) -> Receive:
-    """A `receive` that gives `first`, then defers to `rest`."""
-    given = False
-
-    async def replay() -> Message:
-        nonlocal given
-        if not given:
-            given = True
-            return first
-        return await rest()
-
-    return replay

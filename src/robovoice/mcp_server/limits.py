@@ -71,7 +71,7 @@ class BodyLimits:
         if json_depth_exceeds(body, self.max_depth):
             await self._refuse(send, 400, "too_deep", f"the JSON body nests deeper than {self.max_depth} levels")
             return
-        await self.app(scope, _replay(body, receive), send)
+        await self.app(scope, replaying({"type": "http.request", "body": body, "more_body": False}, receive), send)
 
     async def _refuse(self, send: Send, status: int, code: str, message: str) -> None:
         log.warning("refused a request: %s", message)
@@ -97,15 +97,16 @@ def _content_length(scope: Scope) -> int | None:
     return None
 
 
-def _replay(body: bytes, receive: Receive) -> Receive:
-    """A `receive` that yields the buffered body once, then defers to the real one (disconnects)."""
-    sent = False
+def replaying(first: Message, rest: Receive) -> Receive:
+    """A `receive` that gives `first` (a message already read) once, then defers to `rest` (the
+    real one: later body parts, disconnects)."""
+    given = False
 
     async def replay() -> Message:
-        nonlocal sent
-        if not sent:
-            sent = True
-            return {"type": "http.request", "body": body, "more_body": False}
-        return await receive()
+        nonlocal given
+        if not given:
+            given = True
+            return first
+        return await rest()
 
     return replay
