@@ -126,6 +126,29 @@ async def test_step_bound_ends_the_turn_with_words() -> None:
         assert len(result.calls) == 2 and result.reply == "My battery is fine."
 
 
+async def test_a_call_written_as_text_on_the_no_tools_step_is_not_run_and_the_turn_ends_with_words() -> None:
+    """Seen from llama-cpp-python's chatml-function-calling server: offered no tools, the model
+    still wrote `functions.NAME:` as its answer. That call must not run, and the person must not
+    be left with silence."""
+    async with connect_robot(SIM) as robot:
+        from robovoice.llm.fake_server import CallbackReply
+
+        def reply(request: RecordedRequest) -> ToolCallReply | TextReply:
+            if request.tool_names:
+                return ToolCallReply((ScriptedCall("get_battery_state", {}),))
+            return TextReply('functions.navigate_to:\n{"target": "kitchen"}')
+
+        events: list[TurnEvent] = []
+        async with FakeOpenAIServer([], default=CallbackReply(reply)) as server:
+            result = await Assistant(_backend(server), robot.tools, max_steps=2, observer=events.append).turn(
+                "how much battery do you have?")
+        assert [c.name for c in result.calls] == ["get_battery_state"]  # the drive written as text never ran
+        assert robot.sim is not None and robot.sim.state.moving is False
+        spoken = [e.text for e in events if isinstance(e, SentenceReady)]
+        assert spoken == ["Sorry, I found the answer but could not put it into words. Please ask me again."]
+        assert result.reply == spoken[0]
+
+
 async def test_failover_to_a_second_server_then_fallback_when_all_are_dead() -> None:
     async with connect_robot(SIM) as robot:
         events: list[TurnEvent] = []

@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import logging
 import time
-from collections.abc import Awaitable, Callable, Sequence
+from collections.abc import Awaitable, Callable, Collection, Sequence
 from dataclasses import dataclass
 
 from robovoice.assistant.events import (
@@ -58,6 +58,18 @@ class TurnResult:
     outcomes: tuple[ToolReturned, ...]
     metrics: TurnMetrics
     fell_back: bool = False
+
+
+def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
+    """What the person hears when the model ended a turn without words: true to what ran."""
+    ran = [o for o in outcomes if o.error != NOT_REQUESTED]
+    if not ran:
+        return "Sorry, I'm not sure what you would like me to do. Could you say it another way?"
+    if ran[-1].is_error:
+        return "Sorry, that did not work."
+    if all(o.name in read_only for o in ran):  # a question: the answer is in a result nobody worded
+        return "Sorry, I found the answer but could not put it into words. Please ask me again."
+    return "Done."
 
 
 class Assistant:
@@ -138,6 +150,9 @@ class Assistant:
                 await self._say(self.fallback_message, metrics, emit)
                 replies.append(self.fallback_message)
                 break
+            if requested and not specs:  # a call written as text on the no-tools step: not run
+                log.info("the model called %s on a step that offers no tools; not run", [r.name for r in requested])
+                requested = []
             if text:
                 replies.append(text)
             messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
@@ -168,6 +183,13 @@ class Assistant:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next (docs/llm.md)
                 messages.append(ChatMessage("user", f"Now do the next thing I asked: {asked[done]}."))
+        if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
+            read_only = {s.name for s in await self.tools.specs() if s.read_only}
+            words_ = wordless_reply(outcomes, read_only)
+            log.info("the model ended the turn without words; said %r", words_)
+            await self._say(words_, metrics, emit)
+            replies.append(words_)
+            messages.append(ChatMessage("assistant", words_))
         reply = " ".join(r.strip() for r in replies if r.strip())
         if not fell_back:
             self._remember(messages[1:])
