@@ -82,3 +82,19 @@ def test_a_reference_nobody_resolved_is_not_guessed() -> None:
     assert refusal(read_request("I want to see Ben, can you call him?"), CALL, {"contact": "Ben"}) is None
     there = refusal(read_request("Go over there."), NAV, {"target": "kitchen"})
     assert there is not None and there["details"]["reason"] == "unclear"
+
+
+@pytest.mark.parametrize(("text", "kind"), [
+    ("What's your battery level?", ClauseKind.QUESTION),  # a contracted question word is still one
+    ("Where's the projector pointing?", ClauseKind.QUESTION),
+    ("How much battery do you have left?", ClauseKind.QUESTION),  # the robot's state, not an ability
+    ("Do you have a camera?", ClauseKind.ABILITY),
+    ("Have you got a way to call people?", ClauseKind.ABILITY),
+])
+def test_questions_about_state_and_about_abilities(text: str, kind: ClauseKind) -> None:
+    assert [c.kind for c in read_request(text).clauses] == [kind]
+
+
+def test_a_contracted_question_beside_a_request_is_a_step() -> None:
+    assert read_request("Go to the kitchen and what's your battery level?").steps == (
+        "Go to the kitchen", "what's your battery level")

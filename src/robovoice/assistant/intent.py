@@ -128,8 +128,11 @@ _LATER = re.compile(
 _ABILITY = re.compile(
     r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
     r"would you be able|do you know how|can robots|something you can|the kind of robot|"
-    r"do you have|have you got|how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
-    r"by yourself|on your own|ever)\b",
+    r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
+    r"by yourself|on your own|ever)\b"
+    # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
+    # have left?" asks about the robot's state
+    r"|^(?:do you have|have you got)\b",
     re.IGNORECASE,
 )
 # "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").
@@ -181,7 +184,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
     if first in _IMPERATIVE:
         return ClauseKind.REQUEST
-    if first in _WH:
+    if first.split("'")[0] in _WH:  # also "what's", "where's", "how's"
         return ClauseKind.QUESTION
     terse = words(lowered)
     if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now"):
