@@ -112,9 +112,11 @@ async def test_bad_arguments_become_a_tool_error_not_a_call() -> None:
 
 async def test_step_bound_ends_the_turn_with_words() -> None:
     async with connect_robot(SIM) as robot:
+        looks = itertools.cycle(["get_battery_state", "get_robot_pose", "get_projector_state"])
+
         def reply(request: RecordedRequest) -> ToolCallReply | TextReply:
             if request.tool_names:  # keeps calling tools for as long as it is offered any
-                return ToolCallReply((ScriptedCall("get_battery_state", {}),))
+                return ToolCallReply((ScriptedCall(next(looks), {}),))
             return TextReply("My battery is fine.")
 
         from robovoice.llm.fake_server import CallbackReply
@@ -124,6 +126,25 @@ async def test_step_bound_ends_the_turn_with_words() -> None:
             requests = list(server.requests)
         assert len(requests) == 3 and requests[-1].tool_names == []
         assert len(result.calls) == 2 and result.reply == "My battery is fine."
+
+
+async def test_a_repeated_look_up_is_not_run_again_and_the_model_answers_at_once() -> None:
+    """chatml-function-calling's strict call grammar made the model repeat its look-up for as
+    long as tools were offered; the repeat is not run and the next step offers no tools."""
+    async with connect_robot(SIM) as robot:
+        def reply(request: RecordedRequest) -> ToolCallReply | TextReply:
+            if request.tool_names:
+                return ToolCallReply((ScriptedCall("get_battery_state", {}),))
+            return TextReply("My battery is at 100 percent.")
+
+        from robovoice.llm.fake_server import CallbackReply
+
+        async with FakeOpenAIServer([], default=CallbackReply(reply)) as server:
+            result = await Assistant(_backend(server), robot.tools, max_steps=4).turn("how much battery do you have?")
+            requests = list(server.requests)
+        assert [bool(r.tool_names) for r in requests] == [True, True, False]
+        assert [c.name for c in result.calls] == ["get_battery_state"]
+        assert result.reply == "My battery is at 100 percent."
 
 
 async def test_a_call_written_as_text_on_the_no_tools_step_is_not_run_and_the_turn_ends_with_words() -> None:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import logging
 import time
-from collections.abc import Awaitable, Callable, Collection, Sequence
+from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 
 from robovoice.assistant.events import (
@@ -58,6 +58,16 @@ class TurnResult:
     outcomes: tuple[ToolReturned, ...]
     metrics: TurnMetrics
     fell_back: bool = False
+
+
+def _call_key(request: ToolCallRequested) -> str:
+    return request.name + json.dumps(request.arguments, sort_keys=True, default=str)
+
+
+def _is_repeat(request: ToolCallRequested, specs: Mapping[str, ToolSpec], looked_up: Collection[str]) -> bool:
+    """A read-only call already made with the same arguments, with no action since."""
+    spec = specs.get(request.name)
+    return spec is not None and spec.read_only and _call_key(request) in looked_up
 
 
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
@@ -137,10 +147,13 @@ class Assistant:
         outcomes: list[ToolReturned] = []
         fell_back = False
         steps = 0
+        looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
+        answer_now = False
         for step in range(max_steps):
             steps = step + 1
             # On the last step the model gets no tools, so the turn ends with words, not a call.
-            specs: list[ToolSpec] = await self.tools.specs() if step < max_steps - 1 else []
+            offer = step < max_steps - 1 and not answer_now
+            specs: list[ToolSpec] = await self.tools.specs() if offer else []
             try:
                 text, requested = await self._model_step(messages, specs, metrics, emit)
             except LLMError as exc:
@@ -153,18 +166,32 @@ class Assistant:
             if requested and not specs:  # a call written as text on the no-tools step: not run
                 log.info("the model called %s on a step that offers no tools; not run", [r.name for r in requested])
                 requested = []
+            by_name = {spec.name: spec for spec in specs}
+            if requested and all(_is_repeat(r, by_name, looked_up) for r in requested):
+                # the same look-up again: its result is already in front of the model (a small
+                # model on a strict call grammar repeats it until tools are withdrawn). The
+                # repeat is not run; the model answers now, or does the next thing asked.
+                log.info("the model repeated %s; not run", [r.name for r in requested])
+                requested = []
+                pending = len(asked) > 1 and sum(o.error != NOT_REQUESTED for o in outcomes) < len(asked)
+                if not text:
+                    answer_now = not pending
+                    continue
             if text:
                 replies.append(text)
             messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
             if not requested:
                 break
-            by_name = {spec.name: spec for spec in specs}
             ran: list[tuple[ToolCalled, ToolReturned]] = []
             for request in requested:
-                called, returned = await self._run_tool(request, metrics, emit, intent, by_name.get(request.name),
-                                                        said)
+                spec = by_name.get(request.name)
+                called, returned = await self._run_tool(request, metrics, emit, intent, spec, said)
                 ran.append((called, returned))
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
+                if spec is not None and spec.read_only:
+                    looked_up.add(_call_key(request))
+                else:
+                    looked_up.clear()  # an action may change what a look-up returns
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
             done = sum(o.error != NOT_REQUESTED for o in outcomes)
