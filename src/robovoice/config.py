@@ -161,9 +161,13 @@ class BackendConfig(_Frozen):
         return {"connect_s": defaults.connect_s, "first_token_s": defaults.first_token_s, **data, "kind": kind}
 
     def deadlines(self) -> Deadlines | None:
-        """A url backend's deadlines: its kind's, with `connect_s` / `first_token_s` from the file."""
-        from robovoice.llm.base import DEADLINES_BY_KIND
+        """A url backend's deadlines: its kind's, with `connect_s` / `first_token_s` from the file.
+        A local backend's: the embedded model's, with `first_token_s` from the file (None: unchanged)."""
+        from robovoice.llm.base import DEADLINES_BY_KIND, LOCAL_DEADLINES
 
+        if self.local:
+            return dataclasses.replace(LOCAL_DEADLINES, first_token_s=self.first_token_s) if self.first_token_s \
+                else None
         if self.kind is None:
             return None
         return dataclasses.replace(DEADLINES_BY_KIND[self.kind], connect_s=self.connect_s or 0.0,
@@ -188,8 +192,7 @@ class BackendConfig(_Frozen):
         if self.api_key_env and self.api_key_file:
             raise ValueError("give the API key as api_key_env or api_key_file, not both")
         if self.local:
-            misplaced = [name for name in ("model", "kind", "api_key_env", "api_key_file", "connect_s",
-                                           "first_token_s")
+            misplaced = [name for name in ("model", "kind", "api_key_env", "api_key_file", "connect_s")
                          if getattr(self, name) is not None] + (["accepts_audio"] if self.accepts_audio else []) + (
                 ["extra_body"] if self.extra_body else [])
             if misplaced:

@@ -7,7 +7,8 @@ import pytest
 
 from robovoice.eval import patient
 from robovoice.llm import registry
-from robovoice.llm.local import LOCAL_DEADLINES, LocalLlamaBackend
+from robovoice.llm.base import LOCAL_DEADLINES
+from robovoice.llm.local import LocalLlamaBackend
 
 
 def test_the_embedded_model_gets_the_patient_deadlines(monkeypatch: pytest.MonkeyPatch) -> None:

@@ -5,6 +5,7 @@ reached, but lets a reachable one think as long as its own deadline allows."""
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import time
 from pathlib import Path
 
@@ -59,6 +60,26 @@ def test_a_server_on_this_machine_named_on_the_command_line_gets_a_cpu_servers_p
     assert isinstance(server, OpenAICompatBackend)
     cpu = DEADLINES_BY_KIND["local-cpu"]
     assert (server.deadlines.connect_s, server.deadlines.first_token_s) == (cpu.connect_s, cpu.first_token_s)
+
+
+def test_the_embedded_model_takes_its_first_token_deadline_from_the_config(tmp_path: Path) -> None:
+    from robovoice.llm.base import LOCAL_DEADLINES
+    from robovoice.llm.local import LocalLlamaBackend
+
+    path = tmp_path / "robovoice.toml"
+    path.write_text("[[llm.backends]]\nlocal = true\nfirst_token_s = 90\n")
+    parser = argparse.ArgumentParser()
+    add_llm_args(parser)
+    chain = backend_from_args(parser.parse_args([]), load_config(path))
+    local = chain.backends[0]
+    assert isinstance(local, LocalLlamaBackend)
+    assert local.deadlines == dataclasses.replace(LOCAL_DEADLINES, first_token_s=90.0)
+    path.write_text("[[llm.backends]]\nlocal = true\n")
+    unchanged = backend_from_args(parser.parse_args([]), load_config(path)).backends[0]
+    assert isinstance(unchanged, LocalLlamaBackend) and unchanged.deadlines == LOCAL_DEADLINES
+    path.write_text("[[llm.backends]]\nlocal = true\nconnect_s = 1\n")
+    with pytest.raises(ConfigError, match="connect_s: for url backends only"):
+        load_config(path)
 
 
 def test_a_bad_kind_names_the_field_and_the_accepted_kinds(tmp_path: Path) -> None:

@@ -219,7 +219,8 @@ def llm_config_from_args(args: argparse.Namespace, config: Config) -> LLMConfig:
 def backend_spec(backend: BackendConfig, env: Mapping[str, str]) -> BackendSpec:
     """What one configured backend becomes at run time (its API key read now)."""
     if backend.local:
-        return BackendSpec(f"local:{backend.model_path}" if backend.model_path else "local")
+        return BackendSpec(f"local:{backend.model_path}" if backend.model_path else "local",
+                           deadlines=backend.deadlines())
     assert backend.url is not None
     return BackendSpec(backend.url, model=backend.model, accepts_audio=backend.accepts_audio,
                        api_key=api_key_from(env, env_var=backend.api_key_env, key_file=backend.api_key_file),

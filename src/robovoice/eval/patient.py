@@ -2,10 +2,11 @@
 model's deadlines raised so far that none fires. For accuracy figures, never for latency.
 
 Accuracy does not depend on the machine's load, but the embedded model's first-token deadline
-(`llm.local.LOCAL_DEADLINES`, 30 s) does: on a loaded 2-core machine the model misses it, the
+(`llm.base.LOCAL_DEADLINES`, 30 s) does: on a loaded 2-core machine the model misses it, the
 turn says "I can't reach my language model" and does nothing, and doing nothing passes every
-no-action case. A `local` backend takes no deadlines in the config file (docs/llm.md), hence
-this entry point. The report's `model_unanswered` says whether a deadline still fired.
+no-action case. A config file can raise a `local` backend's `first_token_s` (docs/llm.md); this
+entry point raises the idle and total bounds too, with no file to write. The report's
+`model_unanswered` says whether a deadline still fired.
 """
 
 from __future__ import annotations

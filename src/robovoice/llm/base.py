@@ -219,6 +219,10 @@ class Deadlines:
     idle_s: float = 10.0
     total_s: float = 60.0
 
+# The embedded model: no connection; a CPU needs longer to its first token than a server
+# (prefill of a long history on 2 cores). `first_token_s` of a `local = true` backend replaces it.
+LOCAL_DEADLINES = Deadlines(connect_s=0.0, first_token_s=30.0, idle_s=10.0, total_s=120.0)
+
 # Defaults by kind (docs/llm.md, "Deadlines"). local-cpu: a llama.cpp server on the robot's own
 # CPU; a cold ~530-token prompt took 10-40 s on 2 loaded cores. edge-gpu: vLLM or llama.cpp on a
 # GPU in the building, a few hundred ms when well, so 10 s means it is stuck. cloud: a hosted API,

@@ -38,6 +38,7 @@ from typing import Any
 from robovoice.errors import LLMError, MissingDependencyError
 from robovoice.llm import chatml_tools as fmt
 from robovoice.llm.base import (
+    LOCAL_DEADLINES,
     ChatMessage,
     DeadlineExceededError,
     Deadlines,
@@ -58,8 +59,6 @@ from robovoice.llm.model_store import default_model_ready, resolve_model_path
 log = logging.getLogger(__name__)
 
 INSTALL_HINT = "pip install 'robovoice[llm]'"
-# A CPU model needs longer to its first token than a server (prefill of a long history on 2 cores).
-LOCAL_DEADLINES = Deadlines(connect_s=0.0, first_token_s=30.0, idle_s=10.0, total_s=120.0)
 
 
 def llama_cpp_available() -> bool:

@@ -18,9 +18,9 @@ from urllib.parse import urlsplit
 
 from robovoice.config import read_secret_file
 from robovoice.errors import ConfigError
-from robovoice.llm.base import Deadlines, LLMBackend
+from robovoice.llm.base import LOCAL_DEADLINES, Deadlines, LLMBackend
 from robovoice.llm.failover import Backoff, FailoverBackend
-from robovoice.llm.local import LOCAL_DEADLINES, LocalLlamaBackend
+from robovoice.llm.local import LocalLlamaBackend
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.urls import check_http_url
 
