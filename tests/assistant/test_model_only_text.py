@@ -42,6 +42,14 @@ def test_every_gate_hint_read_out_is_unspeakable_whole_or_in_part(hint: str) -> 
         assert speakable(sentence) is None, sentence
 
 
+def test_the_loops_step_hints_read_out_are_unspeakable() -> None:
+    """A compound request gets "One thing at a time, in order. First: …" as a user message the
+    person never said; a small model may read it back."""
+    assert speakable("Now do the next thing I asked: switch the projector on.") is None
+    assert speakable("One thing at a time, in order.") is None
+    assert speakable("I'm on my way to the kitchen, one step at a time.") is not None
+
+
 @pytest.mark.parametrize("reply", REPLIES)
 def test_replies_that_follow_a_hint_are_spoken(reply: str) -> None:
     assert unspeakable_in(reply) is None and speakable(reply) == reply

@@ -30,7 +30,7 @@ from robovoice.assistant.gate import NOT_REQUESTED, refusal
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.phrase import phrase_answer
-from robovoice.assistant.prompt import SYSTEM_PROMPT
+from robovoice.assistant.prompt import FIRST_STEP_HINT, NEXT_STEP_HINT, SYSTEM_PROMPT
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
@@ -209,7 +209,7 @@ class Assistant:
             if more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next (docs/llm.md)
-                messages.append(ChatMessage("user", f"Now do the next thing I asked: {asked[done]}."))
+                messages.append(ChatMessage("user", NEXT_STEP_HINT.format(asked[done])))
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             read_only = {s.name for s in await self.tools.specs() if s.read_only}
             words_ = wordless_reply(outcomes, read_only)
@@ -238,7 +238,7 @@ class Assistant:
         answering = bool(self._history) and self._history[-1].text.rstrip().endswith("?")
         intent = read_request(user, answering=answering) if isinstance(user, str) else None
         if intent is not None and len(intent.steps) > 1:  # a compound request: one thing at a time, in order
-            messages.append(ChatMessage("user", f"One thing at a time, in order. First: {intent.steps[0]}."))
+            messages.append(ChatMessage("user", FIRST_STEP_HINT.format(intent.steps[0])))
         return messages, intent
 
     async def _model_step(

@@ -12,3 +12,10 @@ contacts the tools know. If a request is unclear (where is "there"? who is "her"
 question instead of calling a tool. If a tool says a place or a contact is unknown, say so and \
 name the ones you know. If the person asks for several things, do them one after the other. \
 When the tools have run, say briefly what you did."""
+
+
+# The loop's step hints for a compound request (the person's own words fill the blank): the
+# model reads them as the person's, but they are not, so they are never spoken (speech_guard).
+FIRST_STEP_HINT = "One thing at a time, in order. First: {}."
+NEXT_STEP_HINT = "Now do the next thing I asked: {}."
+STEP_HINTS = (FIRST_STEP_HINT, NEXT_STEP_HINT)

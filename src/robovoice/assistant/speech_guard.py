@@ -15,7 +15,7 @@ import re
 from collections.abc import Iterable
 
 from robovoice.assistant.gate import model_only_texts
-from robovoice.assistant.prompt import SYSTEM_PROMPT
+from robovoice.assistant.prompt import STEP_HINTS, SYSTEM_PROMPT
 
 _TOOL_SYNTAX = re.compile(
     r"</?tool_call>|</?tool_response>|</?function_call>|<function=|</function>"
@@ -68,8 +68,9 @@ def _words(text: str) -> list[str]:
 
 class ModelOnlyText:
     """Text the model reads that is not for the person's ears: the system prompt, the gate's hints
-    (`gate.model_only_texts`), a tool error's hint. A small model sometimes reads such text out
-    ("Please tell the user which one they mean"); a sentence that reproduces it is never spoken.
+    (`gate.model_only_texts`), the loop's step hints (`prompt.STEP_HINTS`), a tool error's hint. A
+    small model sometimes reads such text out ("Please tell the user which one they mean"); a
+    sentence that reproduces it is never spoken.
 
     Two signs, neither a list of phrases: `COPIED_RUN_WORDS` words in a row of such a text (or
     all of a shorter sentence, from 3 words), and the person named as the instructions name
@@ -99,7 +100,7 @@ class ModelOnlyText:
         return " ".join(_ADDRESSEE) if _ADDRESSEE in itertools.pairwise(words) else None
 
 
-MODEL_ONLY = ModelOnlyText([SYSTEM_PROMPT, *model_only_texts()])
+MODEL_ONLY = ModelOnlyText([SYSTEM_PROMPT, *model_only_texts(), *(hint.format('') for hint in STEP_HINTS)])
 
 
 def unspeakable_in(sentence: str, model_only: ModelOnlyText = MODEL_ONLY) -> str | None:
