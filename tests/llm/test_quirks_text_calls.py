@@ -113,3 +113,30 @@ def test_retry_after_as_an_http_date() -> None:
     assert retry_after_seconds(formatdate(now + 12, usegmt=True), now=now) == pytest.approx(12.0)
     assert retry_after_seconds(formatdate(now - 12, usegmt=True), now=now) == 0.0
     assert retry_after_seconds("Wed, 21 Oct 2015 07:28:00 -0000", now=now) == 0.0  # zone-less: GMT, long past
+
+
+def test_the_embedded_model_writing_a_call_after_its_message_makes_a_call_not_words() -> None:
+    """Seen on the embedded model (test v3, a compound request): after ``message:`` it wrote a
+    sentence, then ``functions.navigate_to:`` and the arguments. The call is a call; only the
+    sentence is words. The model's tokens are scripted here; the streaming code is the backend's."""
+    import threading
+    from typing import Any
+
+    from robovoice.llm.base import TextDelta, ToolCallRequested, ToolSpec
+    from robovoice.llm.local import LocalLlamaBackend
+    from robovoice.llm.local_turn import Turn
+
+    pieces = ["I'll go", " now.\n\nfunc", "tions.navigate_to:\n", '{ "target": ', '"hallway" }']
+
+    class Scripted(LocalLlamaBackend):
+        def _complete(self, turn: Turn, prompt: str, *, stream: bool, **kwargs: Any) -> Any:
+            return iter([{"choices": [{"text": p, "finish_reason": None}]} for p in pieces]
+                        + [{"choices": [{"text": "", "finish_reason": "stop"}]}])
+
+    drive = ToolSpec("navigate_to", "Drive to a place.",
+                     {"type": "object", "properties": {"target": {"type": "string"}}})
+    events = list(Scripted()._stream_text(Turn(threading.Event()), "prompt", [drive]))
+    assert "".join(e.text for e in events if isinstance(e, TextDelta)).strip() == "I'll go now."
+    assert [(c.name, dict(c.arguments)) for c in events if isinstance(c, ToolCallRequested)] == [
+        ("navigate_to", {"target": "hallway"})]
+    assert events[-1].reason == "tool_calls"  # type: ignore[union-attr]

@@ -55,6 +55,7 @@ from robovoice.llm.local_speculation import Speculation, SpeculativePrefill
 from robovoice.llm.local_turn import Turn, TurnStats
 from robovoice.llm.model_store import INSTALL_HINT as MODEL_INSTALL_HINT
 from robovoice.llm.model_store import default_model_ready, resolve_model_path
+from robovoice.llm.text_calls import TextCallParser
 
 log = logging.getLogger(__name__)
 
@@ -218,16 +219,26 @@ class LocalLlamaBackend(SpeculativePrefill):
             **kwargs,
         )
 
-    def _stream_text(self, turn: Turn, prompt: str) -> Iterator[LLMEvent]:
+    def _stream_text(self, turn: Turn, prompt: str, tools: Sequence[ToolSpec] = ()) -> Iterator[LLMEvent]:
+        """A streamed answer. A call the model writes inside it (``functions.NAME:`` after a
+        sentence: the format allows a message or calls, the small model sometimes writes both)
+        becomes a call, as on the OpenAI path (`text_calls`), never words to speak."""
         reason = "stop"
+        parser = TextCallParser([t.name for t in tools])
         for chunk in self._complete(turn, prompt, stream=True, max_tokens=self.max_tokens, stop=[fmt.IM_END]):
             choice = chunk["choices"][0]
             turn.stats.completion_tokens += 1
-            if choice["text"]:
-                yield TextDelta(choice["text"])
+            if choice["text"] and (released := parser.feed(choice["text"])):
+                yield TextDelta(released)
             if choice.get("finish_reason"):
                 reason = str(choice["finish_reason"])
-        yield self._finished(turn, reason)
+        rest, written = parser.finish()
+        if rest:
+            yield TextDelta(rest)
+        stamp = int(time.time() * 1000)
+        for index, call in enumerate(written):
+            yield tool_call_from_raw(f"call_text_{index}_{call.name}_{stamp}", call.name, call.arguments)
+        yield self._finished(turn, "tool_calls" if written else reason)
 
     def _calls(self, turn: Turn, prompt: str, first: ToolSpec, tools: Sequence[ToolSpec]) -> Iterator[LLMEvent]:
         tool: ToolSpec | None = first
@@ -264,7 +275,7 @@ class LocalLlamaBackend(SpeculativePrefill):
             return
         decided = self._decide_head(turn, prompt, tools, bias_for(messages, self.tool_bias)).head
         if decided.tool is None:  # "message" (or, never under the grammar, nothing)
-            yield from self._stream_text(turn, prompt + fmt.MESSAGE_HEAD + "\n")
+            yield from self._stream_text(turn, prompt + fmt.MESSAGE_HEAD + "\n", tools)
         else:
             yield from self._calls(turn, prompt, decided.tool, tools)
 
