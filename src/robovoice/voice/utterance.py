@@ -86,19 +86,23 @@ class Transcribing:
         self.speculated = 0  # speculative runs started
         self.reused = 0  # ... whose transcript was used for the utterance
 
-    async def transcribe(self, audio: AudioChunk, hint: str = "") -> tuple[Transcript, float]:
+    async def transcribe(self, audio: AudioChunk, hint: str = "", *, urgent: bool = False) -> tuple[Transcript, float]:
         """(the transcript, scores included, and the milliseconds it took, waiting for the
-        model's thread included). `hint`: see `Transcriber.transcribe`."""
+        model's thread included). `hint`: see `Transcriber.transcribe`. `urgent`: before the
+        transcriptions still waiting (a stop check)."""
         started = time.perf_counter()
-        transcript = await self._executor.run(self.stt.transcribe, audio, hint)
+        run = self._executor.run_first if urgent else self._executor.run
+        transcript = await run(self.stt.transcribe, audio, hint)
         return transcript, (time.perf_counter() - started) * 1000.0
 
     async def transcript_for(
-        self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None, hint: str
+        self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None, hint: str,
+        *, urgent: bool = False,
     ) -> Transcript:
         """The transcript of `audio`: the speculative run's when it covers the utterance,
         else a run now; its time and the ``transcript`` mark go into `metrics`."""
-        transcript, took_ms = await speculation if speculation is not None else await self.transcribe(audio, hint)
+        transcript, took_ms = await speculation if speculation is not None else \
+            await self.transcribe(audio, hint, urgent=urgent)
         metrics.stt_ms += took_ms
         metrics.mark("transcript", max(metrics.start, time.perf_counter()))
         return transcript
@@ -106,8 +110,9 @@ class Transcribing:
     async def text_for(
         self, audio: AudioChunk, metrics: TurnMetrics, speculation: Transcription | None, hint: str
     ) -> str:
-        """`transcript_for`'s text (a stop check needs no scores)."""
-        return (await self.transcript_for(audio, metrics, speculation, hint)).text
+        """`transcript_for`'s text, before the transcriptions still waiting (a stop check,
+        which needs no scores)."""
+        return (await self.transcript_for(audio, metrics, speculation, hint, urgent=True)).text
 
     def speculate(
         self, onset: float, at: float, audio: AudioChunk, create_task: TaskFactory, hint: str = ""
