@@ -124,6 +124,28 @@ async def test_spoken_stop_stops_a_drive_while_the_model_is_busy(
     assert transcriber.hints[-1] == STOP_HINT  # the stop check listens for stop words only
 
 
+async def test_a_stop_acts_at_its_first_pause_without_waiting_for_the_end_of_the_utterance(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    """Issue 12: a stop is decided at the first quiet frame after it, from the speculative
+    transcript, not after the end-of-turn silence; words after it change nothing, and the
+    utterance's own end does not stop (or say "Stopped.") a second time."""
+    async with voice_session(fakes, backend, speed=2.0, sim_speed=1.0, setup="driving") as s:
+        assert s.sim.state.moving
+        transcriber.text = "Stop!"
+        await s.say(join(babble(0.5), silence(MODEL_FORMAT, 0.25), babble(1.0, seed=5)))
+        stopped = await s.log.wait_for(RobotStopped, timeout=10)
+        await s.settle()
+    assert stopped.ok and not s.sim.state.moving
+    heard = s.log.of(StopHeard)
+    assert len(heard) == 1
+    # the utterance the stop was heard in ended 1.25 s after the pause the stop acted at; its end
+    # found the robot standing (no stop check then) or the stop already made
+    [said] = [e for e in s.log.of(UtteranceIgnored) if e.start < heard[0].at]
+    assert said.reason in ("no_wake_word", "stopped_at_pause") and heard[0].at < said.end - 0.9, (heard, said)
+    assert [e.text for e in s.log.of(SentenceSpoken) if e.kind == "stop"] == ["Stopped."]
+
+
 async def test_stop_cancels_the_drive_the_voice_started(
     fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
 ) -> None:

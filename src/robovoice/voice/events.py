@@ -37,7 +37,7 @@ class WakeWordRejected:
 @dataclass(frozen=True, slots=True)
 class UtteranceIgnored:
     """Speech that did not become a command, and why (`no_wake_word`, `own_voice`,
-    `not_a_stop`, `empty`, `wake_only_timeout`)."""
+    `not_a_stop`, `stopped_at_pause`, `empty`, `wake_only_timeout`)."""
 
     reason: str
     start: float

@@ -82,7 +82,7 @@ class Router:
                     self.motion.want()
                 case HeardPause():
                     self.motion.want()
-                    self._on_pause(event)
+                    self._on_pause(event, received)
                 case HeardUtterance():
                     await self._on_utterance(event, received, heard.compute_s)
         self.floor.changed.set()
@@ -101,7 +101,7 @@ class Router:
         self.turns.wake(event.at)
         await self.emit(WakeWordHeard(event.score, event.at, event.during_playback))
 
-    def _on_pause(self, pause: HeardPause) -> None:
+    def _on_pause(self, pause: HeardPause, received: float) -> None:
         """Start transcribing at the first pause of an utterance that will need it, so the
         transcript is (nearly) ready when the end-of-turn silence confirms the end."""
         if self.stt is None or not self.floor.running:
@@ -119,6 +119,8 @@ class Router:
         woken = addressed and self.turns.pending_wake is not None
         command = addressed and not self.audio_native
         floor.spawn(self.speculator.follow(pause, transcription, woken=woken, command=command), "voice-speculation")
+        if not addressed:  # a short utterance while the robot moves: a stop acts at its first pause
+            floor.check(self.stopper.check_pause(pause, transcription, received))
 
     async def _on_utterance(self, utt: HeardUtterance, received: float, compute_s: float) -> None:
         short = utt.duration_s <= self.config.turns.stop_max_s

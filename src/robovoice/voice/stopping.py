@@ -2,7 +2,10 @@
 
 `StopController.check` is a stop check: a short utterance heard without the wake word while
 the robot moves, transcribed with the stop words as the hint and matched against the stop
-grammar (`stop.is_stop_command`). `StopController.stop` stops the robot: it cancels the turn
+grammar (`stop.is_stop_command`). `check_pause` makes the same check on the speculative
+transcript at the utterance's first pause, so a stop acts without waiting for the end-of-turn
+silence (whatever follows a "stop" cannot make stopping wrong); a stop is made once per
+utterance, by whichever check gets there first. `StopController.stop` stops the robot: it cancels the turn
 holding the floor (and the action it started), drops queued speech, calls the tool with the
 ``stop`` role (`roles.VoiceRoles.stop`, from the robot's manifests) with a bounded wait, and
 says the outcome. It runs beside a turn, never inside the model's loop.
@@ -25,7 +28,7 @@ from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import Emit, RobotStopped, StopHeard
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
 from robovoice.voice.lastword import last_word_end
-from robovoice.voice.listener import HeardUtterance
+from robovoice.voice.listener import HeardPause, HeardUtterance
 from robovoice.voice.roles import VoiceRoles
 from robovoice.voice.speech import SpeechOutput
 from robovoice.voice.stop import is_stop_command
@@ -62,6 +65,38 @@ class StopController:
         self.own_words = own_words
         self.roles = VoiceRoles()
         self.wall_time: Callable[[float], float | None] = lambda _stream_s: None  # the pipeline's clock mapping
+        self._stopped_for: float | None = None  # the onset of the utterance the last stop was made for
+
+    def _first_for(self, onset: float) -> bool:
+        """Whether no stop was made yet for the utterance starting at `onset` (and claim it)."""
+        if self._stopped_for == onset:
+            return False
+        self._stopped_for = onset
+        return True
+
+    async def check_pause(self, pause: HeardPause, transcription: Transcription, received: float) -> None:
+        """A stop said and paused after, the robot moving: stop at once from the speculative
+        transcript. Words the robot itself says are left to `check`, which knows how much of the
+        utterance was its own playback."""
+        metrics = TurnMetrics(start=received)
+        metrics.speech_end = self.wall_time(last_word_end(pause.audio, pause.at))
+        await asyncio.wait([transcription])  # its cancellation (speech went on) is not ours
+        if transcription.cancelled() or transcription.exception() is not None:
+            return
+        transcript, took_ms = transcription.result()
+        text = transcript.text
+        if not is_stop_command(strip_wake_words(text, self.config.wake_phrase)) or self.own_words.contains(text):
+            return
+        if not self._first_for(pause.onset):
+            return
+        metrics.stt_ms += took_ms
+        metrics.mark("transcript")
+        log.info("stop heard at the first pause (%.2f s), before the end of the utterance", pause.at)
+        turn = self.floor.new_turn()
+        try:
+            await self.stop(text, pause.at, turn, metrics)
+        finally:
+            self.answers.save(turn)
 
     async def check(self, utt: HeardUtterance, received: float, speculation: Transcription | None) -> None:
         """Is this short utterance (no wake word, the robot moving) a stop? Then stop."""
@@ -76,6 +111,9 @@ class StopController:
             return
         if utt.playback_share > 0.3 and self.own_words.contains(text):
             await report_ignored(self.emit, self.stats, "own_voice", utt, text)  # the robot heard itself
+            return
+        if not self._first_for(utt.start):
+            await report_ignored(self.emit, self.stats, "stopped_at_pause", utt, text)  # `check_pause` did
             return
         turn = self.floor.new_turn()
         try:
