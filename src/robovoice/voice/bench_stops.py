@@ -12,7 +12,9 @@ clock mapped to the wall clock):
   around the robot's tools: the sim receives it over in-process MCP right after);
 - ``stop_answered``: the stop tool's answer (the sim has halted the drive by then).
 
-The end-of-turn decision (``decided``) is given too: what the silence wait costs.
+When the stop check began (``decided``) is given too: at the first pause after the stop, once
+its speculative transcript is a stop (`StopController.check_pause`), else at the end-of-turn
+decision; what waiting for silence costs.
 
     python -m robovoice.voice.bench stops --turns 12
     robovoice bench voice stops --turns 12
