@@ -87,3 +87,17 @@ def test_a_stop_whose_drive_never_started_says_so() -> None:
     outcome = Outcome(STOP, 10.0)
     judge(outcome, [], _state("kitchen", battery=50.0))
     assert outcome.problem == "the drive never started"
+
+
+def test_a_command_that_came_to_nothing_says_what_was_heard_instead() -> None:
+    """A soak's "call Anna" twice ended with no turn at all; the report now says what the
+    pipeline heard (the wake word or not, the transcript, an utterance ignored and why)."""
+    from robovoice.voice.events import WakeWordHeard
+
+    outcome = Outcome(KITCHEN, 10.0)
+    judge(outcome, [], _state("kitchen", battery=50.0))
+    assert outcome.problem == "no turn finished with a reply (heard: nothing)"
+    outcome = Outcome(KITCHEN, 10.0)
+    judge(outcome, [WakeWordHeard(0.8, 12.5, False), UtteranceIgnored("empty", 12.6, 13.0)],
+          _state("kitchen", battery=50.0))
+    assert outcome.problem == "no turn finished with a reply (heard: wake word at 12.5 s; empty at 12.6-13.0 s)"

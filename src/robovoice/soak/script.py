@@ -19,7 +19,16 @@ import numpy as np
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.sim import SimState
-from robovoice.voice.events import BargedIn, PipelineEvent, RobotStopped, UtteranceIgnored, VoiceTurnFinished
+from robovoice.voice.events import (
+    BargedIn,
+    PipelineEvent,
+    RobotStopped,
+    TranscriptReady,
+    UtteranceIgnored,
+    VoiceTurnFinished,
+    WakeWordHeard,
+    WakeWordRejected,
+)
 
 KINDS = ("drive", "question", "projector", "call", "stop", "barge")
 WEIGHTS = (0.28, 0.2, 0.12, 0.14, 0.13, 0.13)
@@ -101,6 +110,25 @@ class Outcome:
                 "errors": self.errors, "reply": self.reply, "wall_s": round(self.wall_s, 2)}
 
 
+def _heard(events: list[PipelineEvent]) -> str:
+    """What the pipeline heard instead, which says why a command came to nothing: no wake word,
+    a wake word rejected as the robot's own voice, a transcript, or an utterance ignored and why
+    (no_wake_word for a stop: heard when the robot no longer moved, so not checked for a stop)."""
+    heard: list[str] = []
+    for e in events:
+        match e:
+            case WakeWordHeard():
+                heard.append(f"wake word at {e.at:.1f} s")
+            case WakeWordRejected():
+                heard.append(f"wake word at {e.at:.1f} s rejected as the robot's own voice")
+            case TranscriptReady():
+                heard.append(f"transcript {e.text!r}")
+            case UtteranceIgnored():
+                said = "" if e.text is None else f" {e.text!r}"
+                heard.append(f"{e.reason}{said} at {e.start:.1f}-{e.end:.1f} s")
+    return f" (heard: {'; '.join(heard)})" if heard else " (heard: nothing)"
+
+
 def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> None:
     """Fill in `outcome` from the command's events and the robot's state afterwards."""
     cmd = outcome.command
@@ -113,15 +141,11 @@ def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> Non
     outcome.barged_in = any(isinstance(e, BargedIn) for e in events)
     if cmd.kind == "stop":
         outcome.answered = bool(stops) and stops[-1].ok
-        # what was heard instead says why (e.g. a transcript that is no stop, or one too late)
-        # (no_wake_word: heard when the robot was no longer moving, so not checked for a stop)
-        heard = "; ".join(f"{e.reason}{'' if e.text is None else ' ' + repr(e.text)} at {e.start:.1f}-{e.end:.1f} s"
-                          for e in events if isinstance(e, UtteranceIgnored))
         problem: str | None = None
         if "navigate_to" not in outcome.calls:
             problem = "the drive never started"  # so the stop line was never said
         elif not outcome.answered:
-            problem = "the spoken stop did not reach the robot" + (f" (heard: {heard})" if heard else "")
+            problem = "the spoken stop did not reach the robot" + _heard(events)
         if problem is None and state.moving:
             problem = "the robot is still moving after the stop"
         if problem is None and any(isinstance(e, ToolReturned) and e.name == "navigate_to" and not e.is_error
@@ -129,7 +153,7 @@ def judge(outcome: Outcome, events: list[PipelineEvent], state: SimState) -> Non
             problem = "the drive arrived: the stop came after it had ended"
     else:
         outcome.answered = bool(replied)
-        problem = None if outcome.answered else "no turn finished with a reply"
+        problem = None if outcome.answered else "no turn finished with a reply" + _heard(events)
         if problem is None and cmd.tool not in outcome.calls:
             problem = f"{cmd.tool} was not called (calls: {', '.join(outcome.calls) or 'none'})"
         refused = BATTERY_REFUSALS.intersection(outcome.errors)
