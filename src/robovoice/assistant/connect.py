@@ -22,7 +22,7 @@ from mcp import Client
 from mcp.client.stdio import StdioServerParameters
 from mcp.client.streamable_http import streamable_http_client
 
-from robovoice.address import HttpAddress, StdioAddress
+from robovoice.address import HttpAddress, MiddlewareAddress, StdioAddress
 from robovoice.assistant.robot_tools import RobotTools
 from robovoice.config import RobotConfig, read_secret_file
 from robovoice.errors import ConfigError, RobotUnreachableError
@@ -36,6 +36,10 @@ log = logging.getLogger(__name__)
 
 CALL_TIMEOUT_S = 330.0  # a drive across the sim's map at speed 1 takes minutes
 CONNECT_TIMEOUT_S = 10.0
+# Nodes on a network middleware (ros2://, zenoh://) announce themselves one by one after a new
+# participant joins: without a wait, a first turn (every case of an eval, which reconnects per
+# case) was offered no tools at all.
+DISCOVERY_WAIT_S = 3.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -74,16 +78,19 @@ async def connect_robot(
     audit_log: Path | AuditLog | None = None,
     call_timeout_s: float = CALL_TIMEOUT_S,
     client_name: str = "robovoice-assistant",
-    settle_s: float = 0.0,
+    settle_s: float | None = None,
     tool_names: Collection[str] = (),
 ) -> AsyncIterator[RobotConnection]:
     """Connect to the robot `config` names and yield a `RobotConnection`; all is closed on exit.
 
     For a robot served here: `audit_log` (None: none) and, for nodes on a network middleware,
-    `settle_s` seconds to wait for `tool_names` (or, without names, for the tool list to settle).
+    `settle_s` seconds to wait for `tool_names` (or, without names, for the tool list to settle;
+    default `DISCOVERY_WAIT_S` there, none for the embedded sim).
     """
     tools = RobotTools(call_timeout_s=call_timeout_s)
     target = config.target()
+    if settle_s is None:
+        settle_s = DISCOVERY_WAIT_S if isinstance(target, MiddlewareAddress) else 0.0
     if isinstance(target, HttpAddress | StdioAddress):
         async with AsyncExitStack() as stack:
             try:

@@ -33,7 +33,7 @@ from typing import Any, TextIO
 import mcp_types as types
 
 from robovoice.address import LocalAddress, MiddlewareAddress, RobotAddress, SimAddress
-from robovoice.assistant.connect import RobotConnection, connect_robot
+from robovoice.assistant.connect import DISCOVERY_WAIT_S, RobotConnection, connect_robot
 from robovoice.commands.common import (
     add_robot_args,
     address_from_args,
@@ -64,7 +64,7 @@ from robovoice.mcp_server.audit import DEFAULT_KEEP, DEFAULT_MAX_BYTES, AuditLog
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
 _FIRST_SENTENCE = re.compile(r"(?<![A-Z][a-z])\.\s")
-DEFAULT_WAIT_S = 3.0
+DEFAULT_WAIT_S = DISCOVERY_WAIT_S
 SNAPSHOT_WAIT_S = 5.0  # `call` of a snapshot tool right after start-up waits for the first message
 
 
