@@ -39,3 +39,16 @@ def test_audio_test_set_clips_exist_and_forbid_acting_on_garble() -> None:
             assert not case.expect and set(case.forbid) == ACTUATION, case.id
     dev_ids = {c.id for c in load_cases(DATA / "audio.jsonl")}
     assert not dev_ids & {c.id for c in cases}
+
+
+def test_text_test_set_v3_is_fresh_and_forbids_every_actuation_where_nothing_was_asked() -> None:
+    cases = load_cases(DATA / "text-test-3.jsonl")
+    assert len(cases) == 60 and len({c.id for c in cases}) == 60
+    dev = load_cases(DATA / "text.jsonl")
+    assert not {c.id for c in dev} & {c.id for c in cases}
+    assert not {c.text for c in dev} & {c.text for c in cases}  # phrasings the dev set does not use
+    for case in cases:
+        if case.case_class in ("mention", "ability", "chat") or (case.case_class == "negated" and not case.expect):
+            assert set(case.forbid) == ACTUATION, case.id
+        if case.case_class == "compound":
+            assert len(case.expect) >= 2, case.id
