@@ -67,11 +67,17 @@ class StopController:
         self.wall_time: Callable[[float], float | None] = lambda _stream_s: None  # the pipeline's clock mapping
         self._stopped_for: float | None = None  # the onset of the utterance the last stop was made for
 
-    def _first_for(self, onset: float) -> bool:
-        """Whether no stop was made yet for the utterance starting at `onset` (and claim it)."""
+    async def _stop_once(self, onset: float, text: str, at: float, metrics: TurnMetrics) -> bool:
+        """Stop for the utterance starting at `onset`, unless a stop was already made for it
+        (its first pause and its end may both find the stop); whether it stopped now."""
         if self._stopped_for == onset:
             return False
         self._stopped_for = onset
+        turn = self.floor.new_turn()
+        try:
+            await self.stop(text, at, turn, metrics)
+        finally:
+            self.answers.save(turn)
         return True
 
     async def check_pause(self, pause: HeardPause, transcription: Transcription, received: float) -> None:
@@ -87,16 +93,10 @@ class StopController:
         text = transcript.text
         if not is_stop_command(strip_wake_words(text, self.config.wake_phrase)) or self.own_words.contains(text):
             return
-        if not self._first_for(pause.onset):
-            return
         metrics.stt_ms += took_ms
         metrics.mark("transcript")
         log.info("stop heard at the first pause (%.2f s), before the end of the utterance", pause.at)
-        turn = self.floor.new_turn()
-        try:
-            await self.stop(text, pause.at, turn, metrics)
-        finally:
-            self.answers.save(turn)
+        await self._stop_once(pause.onset, text, pause.at, metrics)
 
     async def check(self, utt: HeardUtterance, received: float, speculation: Transcription | None) -> None:
         """Is this short utterance (no wake word, the robot moving) a stop? Then stop."""
@@ -112,14 +112,8 @@ class StopController:
         if utt.playback_share > 0.3 and self.own_words.contains(text):
             await report_ignored(self.emit, self.stats, "own_voice", utt, text)  # the robot heard itself
             return
-        if not self._first_for(utt.start):
+        if not await self._stop_once(utt.start, text, utt.end, metrics):
             await report_ignored(self.emit, self.stats, "stopped_at_pause", utt, text)  # `check_pause` did
-            return
-        turn = self.floor.new_turn()
-        try:
-            await self.stop(text, utt.end, turn, metrics)
-        finally:
-            self.answers.save(turn)
 
     async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics) -> None:
         """Stop the robot now: the stop tool, straight; the active turn cancelled; no model."""
