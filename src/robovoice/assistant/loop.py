@@ -70,9 +70,19 @@ def _is_repeat(request: ToolCallRequested, specs: Mapping[str, ToolSpec], looked
     return spec is not None and spec.read_only and _call_key(request) in looked_up
 
 
+def _ran(outcomes: Sequence[ToolReturned]) -> list[ToolReturned]:
+    """The calls that reached the robot (the check before acting refused none of them)."""
+    return [o for o in outcomes if o.error != NOT_REQUESTED]
+
+
+def _asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned]) -> bool:
+    """A compound request with things asked that no call has done yet."""
+    return len(asked) > 1 and len(_ran(outcomes)) < len(asked)
+
+
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
     """What the person hears when the model ended a turn without words: true to what ran."""
-    ran = [o for o in outcomes if o.error != NOT_REQUESTED]
+    ran = _ran(outcomes)
     if not ran:
         return "Sorry, I'm not sure what you would like me to do. Could you say it another way?"
     if ran[-1].is_error:
@@ -173,9 +183,8 @@ class Assistant:
                 # repeat is not run; the model answers now, or does the next thing asked.
                 log.info("the model repeated %s; not run", [r.name for r in requested])
                 requested = []
-                pending = len(asked) > 1 and sum(o.error != NOT_REQUESTED for o in outcomes) < len(asked)
                 if not text:
-                    answer_now = not pending
+                    answer_now = not _asked_left(asked, outcomes)
                     continue
             if text:
                 replies.append(text)
@@ -194,8 +203,7 @@ class Assistant:
                     looked_up.clear()  # an action may change what a look-up returns
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
-            done = sum(o.error != NOT_REQUESTED for o in outcomes)
-            more = len(asked) > 1 and done < len(asked) and step < max_steps - 2
+            more = _asked_left(asked, outcomes) and step < max_steps - 2
             # the tool's own phrase answers this step when it fills and nothing was asked it
             # does not answer: no model step just to word it (assistant/phrase.py)
             phrase = phrase_answer(intent, self.tools.voice(), ran, {s.name for s in specs if s.read_only})
@@ -209,7 +217,7 @@ class Assistant:
             if more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next (docs/llm.md)
-                messages.append(ChatMessage("user", NEXT_STEP_HINT.format(asked[done])))
+                messages.append(ChatMessage("user", NEXT_STEP_HINT.format(asked[len(_ran(outcomes))])))
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             read_only = {s.name for s in await self.tools.specs() if s.read_only}
             words_ = wordless_reply(outcomes, read_only)
