@@ -22,7 +22,7 @@ from mcp import Client
 from mcp.client.stdio import StdioServerParameters
 from mcp.client.streamable_http import streamable_http_client
 
-from robovoice.address import HttpAddress, MiddlewareAddress, StdioAddress
+from robovoice.address import HttpAddress, MiddlewareAddress, RobotAddress, StdioAddress
 from robovoice.assistant.robot_tools import RobotTools
 from robovoice.config import RobotConfig, read_secret_file
 from robovoice.errors import ConfigError, RobotUnreachableError
@@ -40,6 +40,12 @@ CONNECT_TIMEOUT_S = 10.0
 # participant joins: without a wait, a first turn (every case of an eval, which reconnects per
 # case) was offered no tools at all.
 DISCOVERY_WAIT_S = 3.0
+
+
+def discovery_wait_s(target: RobotAddress) -> float:
+    """How long a first turn waits for the robot's tools by default: `DISCOVERY_WAIT_S` for
+    nodes on a network middleware, none for the embedded sim or an MCP server."""
+    return DISCOVERY_WAIT_S if isinstance(target, MiddlewareAddress) else 0.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -90,7 +96,7 @@ async def connect_robot(
     tools = RobotTools(call_timeout_s=call_timeout_s)
     target = config.target()
     if settle_s is None:
-        settle_s = DISCOVERY_WAIT_S if isinstance(target, MiddlewareAddress) else 0.0
+        settle_s = discovery_wait_s(target)
     if isinstance(target, HttpAddress | StdioAddress):
         async with AsyncExitStack() as stack:
             try:

@@ -33,7 +33,7 @@ from typing import Any, TextIO
 import mcp_types as types
 
 from robovoice.address import LocalAddress, MiddlewareAddress, RobotAddress, SimAddress
-from robovoice.assistant.connect import DISCOVERY_WAIT_S, RobotConnection, connect_robot
+from robovoice.assistant.connect import DISCOVERY_WAIT_S, RobotConnection, connect_robot, discovery_wait_s
 from robovoice.commands.common import (
     add_robot_args,
     address_from_args,
@@ -64,7 +64,6 @@ from robovoice.mcp_server.audit import DEFAULT_KEEP, DEFAULT_MAX_BYTES, AuditLog
 DEFAULT_HOST = "127.0.0.1"
 DEFAULT_PORT = 8765
 _FIRST_SENTENCE = re.compile(r"(?<![A-Z][a-z])\.\s")
-DEFAULT_WAIT_S = DISCOVERY_WAIT_S
 SNAPSHOT_WAIT_S = 5.0  # `call` of a snapshot tool right after start-up waits for the first message
 
 
@@ -74,7 +73,7 @@ SNAPSHOT_WAIT_S = 5.0  # `call` of a snapshot tool right after start-up waits fo
 def _add_wait_arg(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--wait", type=non_negative_float, default=None, metavar="S",
                         help=f"with a middleware URI: how long to wait for the nodes to announce themselves "
-                             f"(default {DEFAULT_WAIT_S:g} s)")
+                             f"(default {DISCOVERY_WAIT_S:g} s)")
 
 
 def _add_audit_args(parser: argparse.ArgumentParser) -> None:
@@ -161,7 +160,7 @@ def _wait_s(args: argparse.Namespace, target: RobotAddress) -> float:
             raise ConfigError(f"--wait applies to nodes on a middleware URI; the MCP server at {target} has its "
                               f"tools already")
         return float(args.wait)
-    return DEFAULT_WAIT_S if isinstance(target, MiddlewareAddress) else 0.0
+    return discovery_wait_s(target)
 
 
 def parse_arguments(pairs: Sequence[str]) -> dict[str, Any]:
