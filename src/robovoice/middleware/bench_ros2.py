@@ -2,7 +2,10 @@
 
 - **call**: an MCP tool call (in-process server and client) bound to a ``std_srvs/SetBool``
   service, the adapter's own `call` without MCP, and a bare rclpy client (its own context,
-  blocking ``client.call``) on the same service, interleaved in blocks in the same run;
+  blocking ``client.call``) on the same service, interleaved in blocks in the same run. The MCP
+  call is timed twice: with the SDK client's default (``mode="auto"``, which settles on the
+  2026-07-28 protocol) and on a 2025-11-25 session (``mode="legacy"``), each beside the same
+  call to a no-op tool on the memory bus (MCP's own share);
 - **ingest**: a 30 Hz ``sensor_msgs/CompressedImage`` (50 kB) into the snapshot store for a
   while, with the process's resident memory before and after (it must stay flat);
 - **kill**: how long until a ``kill -9``'d node's tools are gone (the node runs with the
@@ -27,7 +30,7 @@ import time
 from collections.abc import AsyncIterator, Awaitable, Callable
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from robovoice.middleware.bench_stats import BLOCK, Stats
 from robovoice.middleware.ros2 import Ros2Middleware
@@ -57,9 +60,14 @@ class Ros2BenchReport:
     bare_rclpy: Stats
     adapter_call: Stats
     mcp_call: Stats
+    """With the SDK client's default protocol (2026-07-28): the figure the goal is read on."""
     mcp_memory_call: Stats
     """The same MCP tool call to a no-op RPC on the in-process memory bus: MCP's own share."""
+    mcp_session_call: Stats
+    """The MCP tool call on a 2025-11-25 session (the handshake-era protocol)."""
+    mcp_session_memory_call: Stats
     mcp_minus_bare_ms: float
+    mcp_session_minus_bare_ms: float
     mcp_ratio: float
     ingest: IngestResult
     kill_noticed_s: float
@@ -143,38 +151,38 @@ async def run_ros2_bench(*, domain: int = 231, rounds: int = 6, ingest_s: float 
             bare = await asyncio.to_thread(_BareClient, domain)
             try:
                 server = RobotToolServer(middleware, audit=AuditLog(None))
-                async with server.running(), Client(server.server, mode="legacy") as client:
+                async with (server.running(), Client(server.server) as client,
+                            Client(server.server, mode="legacy") as session_client):
                     async with asyncio.timeout(20):
                         while "bench" not in middleware.nodes():
                             await asyncio.sleep(0.05)
                         while not any(t.name == "set_flag" for t in (await client.list_tools()).tools):
                             await asyncio.sleep(0.05)
+                        await session_client.list_tools()
                     binding_args = {"on": True}
-
-                    async def mcp() -> float:
-                        t0 = time.perf_counter()
-                        result = await client.call_tool("set_flag", binding_args)
-                        if result.is_error:
-                            raise RuntimeError(f"set_flag failed: {result.content}")
-                        return time.perf_counter() - t0
+                    mcp, mcp_session = _timed(client, binding_args), _timed(session_client, binding_args)
 
                     async def adapter() -> float:
                         t0 = time.perf_counter()
                         await middleware.call("bench", SERVICE, binding_args, timeout=5)
                         return time.perf_counter() - t0
 
-                    samples: list[list[float]] = [[], [], [], []]
-                    async with _memory_tool() as memory:
+                    samples: list[list[float]] = [[], [], [], [], [], []]
+                    async with _memory_tool("auto") as memory, _memory_tool("legacy") as memory_session:
                         for _ in range(20):  # warm-up
                             await mcp()
+                            await mcp_session()
                             await adapter()
                             await memory()
+                            await memory_session()
                             bare.call()
                         for _ in range(rounds):
                             samples[0] += [bare.call() for _ in range(BLOCK)]
                             samples[1] += [await adapter() for _ in range(BLOCK)]
                             samples[2] += [await mcp() for _ in range(BLOCK)]
                             samples[3] += [await memory() for _ in range(BLOCK)]
+                            samples[4] += [await mcp_session() for _ in range(BLOCK)]
+                            samples[5] += [await memory_session() for _ in range(BLOCK)]
                     ingest = await _ingest(server, ingest_s)
                     killed = time.monotonic()
                     os.killpg(child.pid, signal.SIGKILL)
@@ -194,13 +202,29 @@ async def run_ros2_bench(*, domain: int = 231, rounds: int = 6, ingest_s: float 
     stats = [Stats.of(s) for s in samples]
     return Ros2BenchReport(
         bare_rclpy=stats[0], adapter_call=stats[1], mcp_call=stats[2], mcp_memory_call=stats[3],
-        mcp_minus_bare_ms=stats[2].median_ms - stats[0].median_ms, mcp_ratio=stats[2].median_ms / stats[0].median_ms,
+        mcp_session_call=stats[4], mcp_session_memory_call=stats[5],
+        mcp_minus_bare_ms=stats[2].median_ms - stats[0].median_ms,
+        mcp_session_minus_bare_ms=stats[4].median_ms - stats[0].median_ms,
+        mcp_ratio=stats[2].median_ms / stats[0].median_ms,
         ingest=ingest, kill_noticed_s=kill_s,
     )
 
 
+def _timed(client: Any, arguments: dict[str, Any]) -> Callable[[], Awaitable[float]]:
+    """One timed `set_flag` call through `client`; a failed call ends the benchmark."""
+
+    async def call() -> float:
+        t0 = time.perf_counter()
+        result = await client.call_tool("set_flag", arguments)
+        if result.is_error:
+            raise RuntimeError(f"set_flag failed: {result.content}")
+        return time.perf_counter() - t0
+
+    return call
+
+
 @contextlib.asynccontextmanager
-async def _memory_tool() -> AsyncIterator[Callable[[], Awaitable[float]]]:
+async def _memory_tool(mode: Literal["auto", "legacy"]) -> AsyncIterator[Callable[[], Awaitable[float]]]:
     """A timed MCP call of a no-op tool on the memory bus (server and client in-process)."""
     from mcp import Client
 
@@ -220,15 +244,9 @@ async def _memory_tool() -> AsyncIterator[Callable[[], Awaitable[float]]]:
     host = await middleware.host(NodeInfo("noop", (RpcInfo("set", params=("on",)),), (), manifest), {"set": noop}, {})
     server = RobotToolServer(middleware, audit=AuditLog(None))
     try:
-        async with server.running(), Client(server.server, mode="legacy") as client:
+        async with server.running(), Client(server.server, mode=mode) as client:
             await client.list_tools()
-
-            async def call() -> float:
-                t0 = time.perf_counter()
-                await client.call_tool("set_flag", {"on": True})
-                return time.perf_counter() - t0
-
-            yield call
+            yield _timed(client, {"on": True})
     finally:
         await host.leave()
         await middleware.close()
