@@ -6,9 +6,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from robovoice.audio.format import AudioChunk
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk
 from robovoice.audio.stt import Confidence, Transcript, WordScore
 from robovoice.config import load_config
 from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ToolCallReply
@@ -17,7 +18,7 @@ from robovoice.voice.confidence import DIDNT_CATCH, command_words, mean_word_pro
 from robovoice.voice.config import ConfidenceCheck, PipelineConfig
 from robovoice.voice.events import RobotStopped, SentenceSpoken, UtteranceIgnored, VoiceTurnFinished
 
-from .voice_kit import SettableTranscriber, babble, fake_models, voice_session, wake_command
+from .voice_kit import WAKE_TONE_HZ, SettableTranscriber, babble, fake_models, join, voice_session, wake_command
 
 pytestmark = pytest.mark.timeout(90)
 
@@ -94,6 +95,41 @@ async def test_an_unsure_command_is_turned_away_and_can_be_said_again_without_th
     assert ignored.reason.startswith("unsure: mean log-probability -1.50")
     assert ignored.text == "Hey Jarvis, turn on the projector."
     assert [e.text for e in s.log.of(SentenceSpoken)] == [DIDNT_CATCH, "The projector is now on."]  # its phrase
+    assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
+    assert s.sim.state.projector_on
+
+
+class ChatterTranscriber(ScoredTranscriber):
+    """Television talk before the wake word weighs on the transcript: audio with more than a
+    second of talk before the wake tone comes back unsure with the talk in front, audio with
+    less comes back sure. (The tone detector fires at the tone's start, a real one at the end
+    of "Hey Jarvis", so the second cut keeps some talk here.)"""
+
+    def transcribe(self, audio: AudioChunk, hint: str = "") -> Transcript:
+        x = audio.samples.astype(np.float64)
+        windows = [x[i:i + 1600] for i in range(0, x.size - 1600, 1600)]  # 0.1 s each
+        freqs = np.fft.rfftfreq(1600, 1 / MODEL_FORMAT.rate)
+        talk_s = next((i * 0.1 for i, w in enumerate(windows)
+                       if (p := np.abs(np.fft.rfft(w)) ** 2)[np.abs(freqs - WAKE_TONE_HZ) < 50].sum() > 0.5 * p.sum()),
+                      audio.duration_s)
+        chatter = talk_s > 1.0
+        self.text = "Breathe, hey Jarvis, turn on the projector." if chatter else "Hey Jarvis, turn on the projector."
+        self.avg_logprob = UNSURE if chatter else SURE
+        return super().transcribe(audio, hint)
+
+
+async def test_an_unsure_command_with_talk_before_the_wake_word_is_judged_again_without_it(
+    server: FakeOpenAIServer, backend: OpenAICompatBackend,
+) -> None:
+    stt = ChatterTranscriber()
+    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)))
+    async with voice_session(fake_models(stt), backend, speed=2.0) as s:
+        await s.say(join(babble(1.5, seed=3), wake_command(1.0)))  # one breath: the talk, the tone, the command
+        done = await s.log.wait_for(VoiceTurnFinished)
+        await s.settle()
+    assert stt.calls >= 2 and stt.durations[-1] < stt.durations[-2]  # the second run left the talk out
+    assert not [e for e in s.log.of(UtteranceIgnored) if e.reason.startswith("unsure")]
+    assert DIDNT_CATCH not in [e.text for e in s.log.of(SentenceSpoken)]
     assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
     assert s.sim.state.projector_on
 

@@ -22,6 +22,10 @@ from robovoice.voice.inference import ModelExecutor
 from robovoice.voice.stop import normalise
 
 WAKE_LOOKBACK_S = 1.6  # a command's audio starts at most this long before its wake word
+# ... and this long when an unsure transcript is tried again without the talk before the
+# phrase: the detector fires ~0.76 s after a "Hey Jarvis" begins (24 made-up commands after
+# television talk, soak voices); the longer first cut keeps a slow speaker's "hey"
+WAKE_PHRASE_S = 1.0
 
 
 def wav_bytes(audio: AudioChunk) -> bytes:
@@ -38,25 +42,54 @@ def wav_bytes(audio: AudioChunk) -> bytes:
     return buf.getvalue()
 
 
-def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
-    """Remove the wake phrase from the start of a transcript, tolerating how speech-to-text
-    spells it ("Hey, Jarvis,", "Hey Jervis", "Jarvis,"); text after it is kept as said."""
+WAKE_PREFIX_WORDS = 4  # words of other talk a transcript may hold before the whole wake phrase
+
+
+def _wake_phrase_at(text: str, phrase: str) -> tuple[int, int] | None:
+    """Where the wake phrase ends in `text` (a character index) and how many words came
+    before it, or None. The phrase is matched loosely, as speech-to-text spells it ("Hey,
+    Jarvis,", "Hey Jervis", "Jarvis,"): its last words at the very start, or the whole phrase
+    after a few words of other talk heard in the same breath ("Breathe, hey Jarvis, …": a
+    television's last word before the person spoke)."""
     words = list(re.finditer(r"[A-Za-z']+", text))
     target = phrase.lower().split()
+
+    def like(start: int, k: int) -> bool:
+        heard = " ".join(w.group(0).lower() for w in words[start:start + k])
+        return difflib.SequenceMatcher(None, heard, " ".join(target[-k:])).ratio() >= 0.75
+
     for k in range(len(target), 0, -1):
-        if len(words) < k:
-            continue
-        heard = " ".join(w.group(0).lower() for w in words[:k])
-        if difflib.SequenceMatcher(None, heard, " ".join(target[-k:])).ratio() >= 0.75:
-            return text[words[k - 1].end() :].lstrip(" ,.!?;:-").strip()
-    return text.strip()
+        if len(words) >= k and like(0, k):
+            return words[k - 1].end(), 0
+    k = len(target)  # after other talk: the whole phrase, each word close ("the Jarvis mode" is no wake)
+    for start in range(1, min(WAKE_PREFIX_WORDS, len(words) - k) + 1):
+        if all(_like_word(words[start + i].group(0), target[i]) for i in range(k)):
+            return words[start + k - 1].end(), start
+    return None
 
 
-def trim_to_wake(audio: AudioChunk, wake_at: float | None) -> AudioChunk:
+def _like_word(heard: str, word: str) -> bool:
+    return difflib.SequenceMatcher(None, heard.lower(), word).ratio() >= 0.75
+
+
+def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
+    """Remove the wake phrase (and anything heard before it) from a transcript; the text
+    after it is kept as said."""
+    found = _wake_phrase_at(text, phrase)
+    return text.strip() if found is None else text[found[0]:].lstrip(" ,.!?;:-").strip()
+
+
+def talk_before_wake(text: str, phrase: str = "hey jarvis") -> bool:
+    """The transcript holds other words before the wake phrase (chatter in the same utterance)."""
+    found = _wake_phrase_at(text, phrase)
+    return found is not None and found[1] > 0
+
+
+def trim_to_wake(audio: AudioChunk, wake_at: float | None, lookback_s: float = WAKE_LOOKBACK_S) -> AudioChunk:
     """Drop what was said long before the wake word (chatter in the same utterance)."""
     if wake_at is None:
         return audio
-    cut = round((wake_at - WAKE_LOOKBACK_S - audio.timestamp) * audio.format.rate)
+    cut = round((wake_at - lookback_s - audio.timestamp) * audio.format.rate)
     if cut <= 0:
         return audio
     return AudioChunk(audio.samples[cut:], audio.format, audio.timestamp + cut / audio.format.rate)
