@@ -23,6 +23,9 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "Never mind, I don't want to go there after all.",
     "Wait for me in the bedroom.",
     "Projector off.",
+    "Go to the kitchen with me.",
+    "Turn the projector on.",
+    "List the places you can drive to.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -37,6 +40,10 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Anna phoned me on Sunday.", ClauseKind.STATEMENT),
     ("The kitchen floor is wet.", ClauseKind.STATEMENT),
     ("Stay where you are.", ClauseKind.STATEMENT),
+    ("Leave the video call alone, I'm still talking to Ben.", ClauseKind.NEGATED),
+    ("Just leave the projector be, thanks.", ClauseKind.NEGATED),
+    ("Can you drive over to?", ClauseKind.UNFINISHED),  # cut off: the model would pick a place
+    ("Please switch the...", ClauseKind.UNFINISHED),
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)

@@ -12,7 +12,7 @@ import pytest
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.events import SentenceReady, TurnEvent
 from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts
-from robovoice.assistant.loop import Assistant
+from robovoice.assistant.loop import Assistant, wordless_reply
 from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.assistant.speech_guard import ModelOnlyText, speakable, unspeakable_in
 from robovoice.config import RobotConfig
@@ -78,23 +78,41 @@ def echo_the_hint(request: Any) -> Any:
     return TextReply(f"{hint} All right, I will stay here.")
 
 
-async def test_a_model_that_echoes_the_gate_hint_has_only_its_own_words_spoken() -> None:
+async def _turn_with(reply: Any, text: str = "Don't drive to the bathroom just now.") -> tuple[Any, list[str], str]:
     said: list[str] = []
 
     def on_event(event: TurnEvent) -> None:
         if isinstance(event, SentenceReady):
             said.append(event.text)
 
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(default=CallbackReply(echo_the_hint)) as server:
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(default=CallbackReply(reply)) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
         try:
-            result = await Assistant(backend, robot.tools).turn("Don't drive to the bathroom just now.",
-                                                                observer=on_event)
+            result = await Assistant(backend, robot.tools).turn(text, observer=on_event)
         finally:
             await backend.aclose()
-    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
     hint = json.loads(server.requests[1].messages[-1]["content"])["hint"]
-    assert hint in result.reply  # the model did read the hint out ...
-    spoken = [s for s in said if speakable(s) is not None]
-    assert spoken == ["All right, I will stay here."]  # ... and only its own words are speakable
-    assert len(said) > len(spoken)
+    return result, said, hint
+
+
+async def test_a_model_that_echoes_the_gate_hint_has_only_its_own_words_said() -> None:
+    result, said, hint = await _turn_with(echo_the_hint)
+    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
+    assert hint not in result.reply and hint.split(". ")[0] not in " ".join(said)  # the model read it out
+    assert said == ["All right, I will stay here."] and result.reply == "All right, I will stay here."
+
+
+def only_the_hint(request: Any) -> Any:
+    """A small model that answers a refusal with nothing but its hint."""
+    tool = request.messages[-1]
+    if tool.get("role") != "tool":
+        return ToolCallReply((ScriptedCall("navigate_to", {"target": "bathroom"}),))
+    return TextReply(json.loads(tool["content"])["hint"])
+
+
+async def test_a_reply_that_is_nothing_but_the_hint_ends_the_turn_with_words_of_the_robots_own() -> None:
+    """Before, the voice layer withheld such a reply and the person heard nothing at all."""
+    result, said, _ = await _turn_with(only_the_hint)
+    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
+    assert said == [wordless_reply(result.outcomes, ())] and result.reply == said[0]
+    assert said[0].startswith("Sorry") and speakable(said[0]) == said[0]

@@ -3,7 +3,8 @@
 Read-only tools (MCP ``readOnlyHint``) always run: looking things up is never an unwanted
 action. An actuation tool the model calls is refused locally — it never reaches the robot —
 when the user's words (`intent.read_request`) asked for no action at all (a negated or
-postponed request, an ability question, talk that merely mentions a place or a person), or
+postponed request, an ability question, talk that merely mentions a place or a person, a
+request cut off before its object), or
 when its arguments name only what the user said *not* to do ("don't call Anna, call Ben":
 a call to Anna), or when the request points at something nobody named ("go there", "call
 her") and the model filled in a place or a person the conversation never mentioned. The
@@ -36,6 +37,8 @@ _HINTS = {
     ClauseKind.STATEMENT.value: "The user did not ask you to do anything; they were telling you something. Reply "
                                 "kindly in one short sentence without using tools.",
     ClauseKind.QUESTION.value: "The user asked a question, not for an action. Answer it in one short sentence.",
+    ClauseKind.UNFINISHED.value: "The user stopped before saying all of it. Do not guess: ask them in one short "
+                                 "question to say it again.",
     UNCLEAR: "The user did not say which one they mean. Do not guess: ask them in one short question.",
 }
 

@@ -11,7 +11,9 @@ listener would, clause by clause:
 - an **ability question** ("are you able to…", "can you … if I asked", "do you know how…");
 - a **statement** (talk that mentions a place or a person: "Ben phoned earlier"; "stay
   here", "keep driving": carry on as you are);
-- a **question** about the robot's state ("where are you?") — needs no action.
+- a **question** about the robot's state ("where are you?") — needs no action;
+- an **unfinished** request: the utterance ends where a word must follow ("can you drive
+  over to…", "please switch the…"): the person was cut off, and the model would guess.
 
 `read_request` gives an `Intent`: whether the user asked for any action at all, the
 request clauses in order (the *steps* of a compound request), and the words of the negated
@@ -33,6 +35,7 @@ class ClauseKind(Enum):
     ABILITY = "ability"
     STATEMENT = "statement"
     QUESTION = "question"
+    UNFINISHED = "unfinished"  # a request cut off before its object: "can you drive over to…"
 
 
 @dataclass(frozen=True, slots=True)
@@ -64,7 +67,7 @@ class Intent:
         """Why no action was asked for (the first non-request kind that explains it), or None."""
         if self.asks_action:
             return None
-        for kind in (ClauseKind.NEGATED, ClauseKind.ABILITY, ClauseKind.STATEMENT):
+        for kind in (ClauseKind.NEGATED, ClauseKind.UNFINISHED, ClauseKind.ABILITY, ClauseKind.STATEMENT):
             if any(c.kind is kind for c in self.clauses):
                 return kind
         return ClauseKind.QUESTION if self.clauses else None
@@ -117,7 +120,8 @@ _FILLER = re.compile(
 _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
-    r"hold off|rather not|rather you didn'?t|no,)\b|\bnot\s*$",
+    r"hold off|rather not|rather you didn'?t|no,|leave (?:\w+ ){1,3}(?:alone|be)|let (?:it|that|them) be)\b"
+    r"|\bnot\s*$",
     re.IGNORECASE,
 )
 _LATER = re.compile(
@@ -166,6 +170,23 @@ _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
 
 
+# An utterance whose last request ends on a word that needs one after it was cut off (speech-to-text keeps what
+# was said: "please switch the…", "can you drive over to?"); the model would fill in the rest.
+# A preposition may end a finished request whose object came before it ("list the places
+# you can drive to"); an article or a conjunction may not.
+_ENDS_ON_ARTICLE = re.compile(r"\b(?:the|a|an|my|your|and|or)\s*(?:\.\.\.|\u2026)?[\s.?!]*$", re.IGNORECASE)
+_ENDS_ON_PREPOSITION = re.compile(r"\b(?:to|into|onto|with|at|for|of|from)\s*(?:\.\.\.|\u2026)?[\s.?!]*$",
+                                  re.IGNORECASE)
+_OBJECT_BEFORE = re.compile(r"\b(?:the|which|what)\s+\w+(?:\s+\w+)?\s+(?:that\s+|which\s+)?(?:you|i|we|they)\b",
+                            re.IGNORECASE)
+
+
+def _unfinished(clause: str) -> bool:
+    text = clause.strip()
+    return bool(_ENDS_ON_ARTICLE.search(text)) or bool(_ENDS_ON_PREPOSITION.search(text)
+                                                         and not _OBJECT_BEFORE.search(text))
+
+
 def classify(clause: str) -> ClauseKind:
     text = _FILLER.sub("", clause.strip()).strip()
     lowered = text.lower()
@@ -205,6 +226,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if kind is ClauseKind.STATEMENT and clauses and clauses[-1].kind is ClauseKind.REQUEST and _fragment(part):
             kind = ClauseKind.REQUEST
         clauses.append(Clause(part, kind))
+    if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
+        clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
     return Intent(tuple(clauses))
 
 

@@ -32,6 +32,7 @@ from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import FIRST_STEP_HINT, NEXT_STEP_HINT, SYSTEM_PROMPT
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
+from robovoice.assistant.speech_guard import speakable
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
 from robovoice.llm.base import (
@@ -268,9 +269,8 @@ class Assistant:
                 await emit(FirstTokenReceived(self.backend.name))
             match event:
                 case TextDelta(delta):
-                    text.append(delta)
                     for sentence in splitter.feed(delta):
-                        await self._say(sentence, metrics, emit)
+                        await self._say_speakable(sentence, text, metrics, emit)
                 case ToolCallRequested():
                     requested.append(event)
                 case Finished():
@@ -279,12 +279,23 @@ class Assistant:
         metrics.model_ms += waited * 1000.0
         rest = splitter.flush()
         if rest:
-            await self._say(rest, metrics, emit)
+            await self._say_speakable(rest, text, metrics, emit)
         for i, request in enumerate(requested):
             if not request.id:  # some servers omit ids; the history needs them to pair results
                 requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
                                                  request.raw_arguments, request.arguments_error)
-        return "".join(text).strip(), requested
+        return " ".join(text).strip(), requested
+
+    async def _say_speakable(self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit) -> None:
+        """Say a sentence of the model's and keep it in `said`, unless it reads out words meant
+        for the model only or tool-call syntax (`speech_guard`): then it is neither said nor
+        kept, and a turn left with nothing said ends with `wordless_reply`, not in silence."""
+        spoken = speakable(sentence)
+        if spoken is None:
+            log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)
+            return
+        said.append(spoken.strip())
+        await self._say(spoken, metrics, emit)
 
     @staticmethod
     async def _say(sentence: str, metrics: TurnMetrics, emit: _Emit) -> None:
