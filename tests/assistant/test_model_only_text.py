@@ -10,8 +10,8 @@ from typing import Any
 import pytest
 
 from robovoice.assistant.connect import connect_robot
-from robovoice.assistant.events import SentenceReady, TurnEvent
-from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts
+from robovoice.assistant.events import SentenceReady, ToolReturned, TurnEvent
+from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts, refusal_reasons
 from robovoice.assistant.loop import Assistant, wordless_reply
 from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.assistant.speech_guard import ModelOnlyText, speakable, unspeakable_in
@@ -115,4 +115,12 @@ async def test_a_reply_that_is_nothing_but_the_hint_ends_the_turn_with_words_of_
     result, said, _ = await _turn_with(only_the_hint)
     assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
     assert said == [wordless_reply(result.outcomes, ())] and result.reply == said[0]
-    assert said[0].startswith("Sorry") and speakable(said[0]) == said[0]
+    assert said == ["All right, I won't."]  # the refusal's reason: the person said not to
+
+
+@pytest.mark.parametrize("reason", refusal_reasons())
+def test_every_refusal_reason_has_words_of_the_robots_own(reason: str) -> None:
+    refused = ToolReturned("c1", "navigate_to", "{}", True, 0.0, NOT_REQUESTED,
+                           {"error": NOT_REQUESTED, "details": {"tool": "navigate_to", "reason": reason}})
+    reply = wordless_reply([refused], ())
+    assert not reply.startswith("Sorry, I'm not sure what you would like") and speakable(reply) == reply

@@ -43,6 +43,11 @@ _HINTS = {
 }
 
 
+def refusal_reasons() -> tuple[str, ...]:
+    """Every ``details.reason`` a refusal can give."""
+    return tuple(_HINTS)
+
+
 def model_only_texts() -> tuple[str, ...]:
     """The hints the gate gives the model: instructions for it, never words for the person
     (`speech_guard.ModelOnlyText` keeps a reply that reads them out from being spoken)."""

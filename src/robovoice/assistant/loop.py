@@ -81,10 +81,28 @@ def _asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned]) -> bool:
     return len(asked) > 1 and len(_ran(outcomes)) < len(asked)
 
 
+# What the robot says after refusing a call nobody asked for, when the model found no words of
+# its own (a small model often reads the gate's hint out instead, which is never said): one
+# line per reason of the check before acting (gate.py), true whatever the model had in mind.
+_AFTER_REFUSAL = {
+    "negated": "All right, I won't.",
+    "statement": "I see.",
+    "question": "I'm not sure. Could you ask me another way?",
+    "ability": "Yes, I can do that when you ask me to.",
+    "unfinished": "Sorry, I didn't catch all of that. Could you say it again?",
+    "unclear": "Which one do you mean?",
+}
+
+
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
     """What the person hears when the model ended a turn without words: true to what ran."""
     ran = _ran(outcomes)
     if not ran:
+        refused = [o.result for o in outcomes if o.error == NOT_REQUESTED and o.result is not None]
+        details = refused[-1].get("details") if refused else None
+        reason = details.get("reason") if isinstance(details, dict) else None
+        if isinstance(reason, str) and reason in _AFTER_REFUSAL:
+            return _AFTER_REFUSAL[reason]
         return "Sorry, I'm not sure what you would like me to do. Could you say it another way?"
     if ran[-1].is_error:
         return "Sorry, that did not work."
