@@ -10,7 +10,7 @@ from robovoice.voice.config import SpeechConfig, TurnTakingConfig
 from robovoice.voice.progress import ProgressNarrator
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.turns import Action, Phase, TurnTaking
-from robovoice.voice.utterance import OwnWords, strip_wake_words, talk_before_wake
+from robovoice.voice.utterance import OwnWords, strip_wake_words
 
 from .voice_kit import sim_voice_roles
 
@@ -151,17 +151,6 @@ def test_long_actions_are_acknowledged_then_reported_at_most_every_interval() ->
 ])  # fmt: skip
 def test_wake_phrase_is_removed_from_the_transcript(heard: str, command: str) -> None:
     assert strip_wake_words(heard) == command
-
-
-@pytest.mark.parametrize(("heard", "before"), [
-    ("Breathe, hey Jarvis, call Anna.", True),
-    ("Hey Jarvis, call Anna.", False),
-    ("Jarvis, stop!", False),
-    ("Turn on the Jarvis mode", False),
-    ("Call Anna.", False),
-])  # fmt: skip
-def test_talk_before_the_wake_phrase_is_noticed(heard: str, before: bool) -> None:
-    assert talk_before_wake(heard) is before
 
 
 def test_own_words_are_recognised_for_a_while() -> None:

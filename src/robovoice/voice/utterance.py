@@ -45,12 +45,12 @@ def wav_bytes(audio: AudioChunk) -> bytes:
 WAKE_PREFIX_WORDS = 4  # words of other talk a transcript may hold before the whole wake phrase
 
 
-def _wake_phrase_at(text: str, phrase: str) -> tuple[int, int] | None:
-    """Where the wake phrase ends in `text` (a character index) and how many words came
-    before it, or None. The phrase is matched loosely, as speech-to-text spells it ("Hey,
-    Jarvis,", "Hey Jervis", "Jarvis,"): its last words at the very start, or the whole phrase
-    after a few words of other talk heard in the same breath ("Breathe, hey Jarvis, …": a
-    television's last word before the person spoke)."""
+def _wake_phrase_end(text: str, phrase: str) -> int | None:
+    """Where the wake phrase ends in `text` (a character index), or None. The phrase is
+    matched loosely, as speech-to-text spells it ("Hey, Jarvis,", "Hey Jervis", "Jarvis,"):
+    its last words at the very start, or the whole phrase after a few words of other talk
+    heard in the same breath ("Breathe, hey Jarvis, …": a television's last word before the
+    person spoke)."""
     words = list(re.finditer(r"[A-Za-z']+", text))
     target = phrase.lower().split()
 
@@ -60,11 +60,11 @@ def _wake_phrase_at(text: str, phrase: str) -> tuple[int, int] | None:
 
     for k in range(len(target), 0, -1):
         if len(words) >= k and like(0, k):
-            return words[k - 1].end(), 0
+            return words[k - 1].end()
     k = len(target)  # after other talk: the whole phrase, each word close ("the Jarvis mode" is no wake)
     for start in range(1, min(WAKE_PREFIX_WORDS, len(words) - k) + 1):
         if all(_like_word(words[start + i].group(0), target[i]) for i in range(k)):
-            return words[start + k - 1].end(), start
+            return words[start + k - 1].end()
     return None
 
 
@@ -75,14 +75,8 @@ def _like_word(heard: str, word: str) -> bool:
 def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
     """Remove the wake phrase (and anything heard before it) from a transcript; the text
     after it is kept as said."""
-    found = _wake_phrase_at(text, phrase)
-    return text.strip() if found is None else text[found[0]:].lstrip(" ,.!?;:-").strip()
-
-
-def talk_before_wake(text: str, phrase: str = "hey jarvis") -> bool:
-    """The transcript holds other words before the wake phrase (chatter in the same utterance)."""
-    found = _wake_phrase_at(text, phrase)
-    return found is not None and found[1] > 0
+    end = _wake_phrase_end(text, phrase)
+    return text.strip() if end is None else text[end:].lstrip(" ,.!?;:-").strip()
 
 
 def trim_to_wake(audio: AudioChunk, wake_at: float | None, lookback_s: float = WAKE_LOOKBACK_S) -> AudioChunk:
