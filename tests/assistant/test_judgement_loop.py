@@ -54,3 +54,21 @@ async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     # each action's own phrase said what happened: no model step only to word it
     assert result.reply == "I am at the kitchen now. The projector is now on."
     assert len(server.requests) == 2
+
+
+async def test_a_stop_is_never_refused_even_when_the_words_read_as_talk() -> None:
+    """"Hold it! Stay put!" reads as "carry on as you are" (a statement), and a drive asked in
+    the same words would be refused; the robot's stop tool (voice role "stop") is not."""
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("stop_robot"), TextReply("I have stopped.")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            assert robot.sim is not None
+            await robot.sim.apply_setup("driving")
+            assert robot.sim.state.moving
+            result = await Assistant(backend, robot.tools).turn("Hold it! Stay put!")
+        finally:
+            await backend.aclose()
+        assert not robot.sim.state.moving
+    assert [o.error for o in result.outcomes] == [None]

@@ -90,3 +90,14 @@ def test_resolved_arguments_and_refused_calls() -> None:
     assert not interrupted.passed and interrupted.false_actuations == ("navigate_to",)  # it drove, then stopped
     looked = score_case(case(expect=[], forbid=["get_robot_pose"]), [MadeCall("get_robot_pose", {}, actuation=False)])
     assert not looked.passed and looked.false_actuations == ()
+
+
+def test_an_expected_call_the_check_before_acting_refused_never_reached_the_robot() -> None:
+    bathroom = case(expect=[{"tool": "navigate_to", "args": {"target": "bathroom"}}])
+    gated = MadeCall("navigate_to", {"target": "bathroom"}, error="not_requested")
+    verdict = score_case(bathroom, [gated])
+    assert not verdict.passed and "not_requested" in verdict.reason
+    assert score_case(bathroom, [gated, MadeCall("navigate_to", {"target": "bathroom"})]).passed  # asked again, sent
+    # the robot's own refusal did reach it: a drive it found unreachable is the drive that was asked for
+    balcony = case(expect=[{"tool": "navigate_to", "args": {"target": "balcony"}}])
+    assert score_case(balcony, [MadeCall("navigate_to", {"target": "balcony"}, error="unreachable")]).passed

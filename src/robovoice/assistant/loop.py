@@ -327,7 +327,11 @@ class Assistant:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
-        refused = refusal(intent, spec, request.arguments, said)
+        # a stop is never refused: the robot standing still is never the unwanted action the
+        # check guards against, and a stop misread as talk ("Hold it! Stay put!") must still stop
+        voice = self.tools.voice().get(request.name)
+        refused = None if voice is not None and voice.role == "stop" else refusal(intent, spec, request.arguments,
+                                                                                    said)
         if refused is not None:  # the user did not ask for this: it never reaches the robot
             outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)
         elif request.arguments_error is not None:
