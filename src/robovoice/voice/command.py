@@ -20,6 +20,7 @@ from typing import Literal
 from robovoice.assistant.events import SentenceReady, ToolCalled, ToolProgressed, ToolReturned, TurnEvent
 from robovoice.assistant.loop import Assistant, TurnResult
 from robovoice.assistant.metrics import TurnMetrics
+from robovoice.audio.format import AudioChunk
 from robovoice.audio.stt import Transcript
 from robovoice.llm.base import AudioPart, ContentPart
 from robovoice.voice.answers import AnswerRecorder
@@ -117,23 +118,34 @@ class CommandTurn:
         self._moves: set[str] = set()  # call ids of motion tools under way
         self._heard = False  # something of this turn has been queued for speech
 
-    async def _again_if_unsure(self, heard: Transcript, utt: HeardUtterance, verdict: Verdict) -> Transcript:
-        """An unsure transcript of a woken command, transcribed once more from just before the
-        wake phrase. Talk in the same breath before the wake word (a television's last words)
-        is transcribed with the command and weighs on the whole transcript's score: in the
-        soak, "Breathe, hey Jarvis, call Anna." scored -0.65 and was turned away. The second
-        run judges the command without it; a command buried in noise stays unsure. Only when
-        speech began before the phrase: a clean but cut-off "Hey Jarvis, video call" (-0.63)
-        scored -0.55 on a second run of nearly the same audio, and was acted on."""
+    async def _transcribe(
+        self, audio: AudioChunk, utt: HeardUtterance, verdict: Verdict, speculation: Transcription | None
+    ) -> tuple[Transcript, str, str | None]:
+        """The command's transcript, its words (wake phrase removed) and why it is too unsure
+        to act on (None: sure enough).
+
+        An unsure transcript of a woken command whose speech began before the wake phrase is
+        transcribed once more from just before the phrase. Talk in the same breath before the
+        wake word (a television's last words) is transcribed with the command and weighs on
+        the whole transcript's score: in the soak, "Breathe, hey Jarvis, call Anna." scored
+        -0.65 and was turned away. The second run judges the command without it; a command
+        buried in noise stays unsure. Only with speech before the phrase: a clean but cut-off
+        "Hey Jarvis, video call" (-0.63) scored -0.55 on a second run of nearly the same
+        audio, and was acted on."""
         c = self._c
         assert c.stt is not None
-        text = strip_wake_words(heard.text, c.config.wake_phrase)
-        if verdict.wake_at is None or unsure_reason(heard, text, c.config.confidence) is None:
-            return heard
-        if utt.start >= verdict.wake_at - WAKE_PHRASE_S:  # no talk before the phrase: nothing to leave out
-            return heard
-        tight = trim_to_wake(utt.audio, verdict.wake_at, WAKE_PHRASE_S)
-        return await c.stt.transcript_for(tight, self.metrics, None, c.hint)
+        heard = await c.stt.transcript_for(audio, self.metrics, speculation, c.hint)
+        text, unsure = self._judged(heard, verdict)
+        if unsure is not None and verdict.wake_at is not None and utt.start < verdict.wake_at - WAKE_PHRASE_S:
+            tight = trim_to_wake(utt.audio, verdict.wake_at, WAKE_PHRASE_S)
+            heard = await c.stt.transcript_for(tight, self.metrics, None, c.hint)
+            text, unsure = self._judged(heard, verdict)
+        return heard, text, unsure
+
+    def _judged(self, heard: Transcript, verdict: Verdict) -> tuple[str, str | None]:
+        c = self._c
+        text = strip_wake_words(heard.text, c.config.wake_phrase) if verdict.wake_at is not None else heard.text.strip()
+        return text, unsure_reason(heard, text, c.config.confidence)
 
     async def run(self, utt: HeardUtterance, verdict: Verdict, speculation: Transcription | None) -> None:
         c = self._c
@@ -151,11 +163,8 @@ class CommandTurn:
                     return
                 content = (AudioPart(wav_bytes(audio)),)
             else:
-                assert c.stt is not None
-                heard = await c.stt.transcript_for(audio, metrics, speculation, c.hint)
-                heard = await self._again_if_unsure(heard, utt, verdict)
+                heard, text, unsure = await self._transcribe(audio, utt, verdict, speculation)
                 raw = heard.text
-                text = strip_wake_words(raw, c.config.wake_phrase) if verdict.wake_at is not None else raw.strip()
                 await c.emit(TranscriptReady(text, metrics.stt_ms))
                 if not re.search(r"[A-Za-z0-9]", text):
                     c.turns.rearm(utt.end)
@@ -165,7 +174,7 @@ class CommandTurn:
                 if is_stop_command(text):
                     await c.stopper.stop(text, utt.end, self.id, metrics)
                     return
-                if (unsure := unsure_reason(heard, text, c.config.confidence)) is not None:
+                if unsure is not None:
                     c.turns.rearm(utt.end)  # the person may say it again without the wake word
                     self._say(DIDNT_CATCH, "reply")
                     await report_ignored(c.emit, c.stats, unsure, utt, raw)
