@@ -1,15 +1,15 @@
 """The check before acting: an actuation tool runs only when the user asked for it now.
 
-Read-only tools (MCP ``readOnlyHint``) always run: looking things up is never an unwanted
-action. An actuation tool the model calls is refused locally — it never reaches the robot —
-when the user's words (`intent.read_request`) asked for no action at all (a negated or
-postponed request, an ability question, talk that merely mentions a place or a person, a
-request cut off before its object), or
-when its arguments name only what the user said *not* to do ("don't call Anna, call Ben":
-a call to Anna), or when the request points at something nobody named ("go there", "call
-her") and the model filled in a place or a person the conversation never mentioned. The
-model gets a structured ``not_requested`` tool error whose hint tells
-it how to answer instead, so the turn still ends with words the person understands.
+Read-only tools (MCP ``readOnlyHint``) and the robot's stop always run: looking things up or
+standing still is never an unwanted action. An actuation tool the model calls is refused
+locally — it never reaches the robot — when the user's words (`intent.read_request`) asked
+for no action at all (a negated or postponed request, an ability question, talk that merely
+mentions a place or a person, a request cut off before its object), or when its arguments
+name only what the user said *not* to do ("don't call Anna, call Ben": a call to Anna), or
+when the request points at something nobody named ("go there", "call her") and the model
+filled in a place or a person the conversation never mentioned. The model gets a structured
+``not_requested`` tool error whose hint tells it how to answer instead, so the turn still
+ends with words the person understands (or, when it has none, `said_after`'s).
 
 Audio given to an audio-capable model has no words to read: nothing is refused then.
 """
@@ -43,6 +43,24 @@ _HINTS = {
 }
 
 
+# What the robot says after a refusal when the model found no words of its own (a small model
+# often reads the hint out instead, which is never said): one line per reason, true whatever
+# the model had in mind.
+_AFTER = {
+    ClauseKind.NEGATED.value: "All right, I won't.",
+    ClauseKind.STATEMENT.value: "I see.",
+    ClauseKind.QUESTION.value: "I'm not sure. Could you ask me another way?",
+    ClauseKind.ABILITY.value: "Yes, I can do that when you ask me to.",
+    ClauseKind.UNFINISHED.value: "Sorry, I didn't catch all of that. Could you say it again?",
+    UNCLEAR: "Which one do you mean?",
+}
+
+
+def said_after(reason: str) -> str | None:
+    """The robot's own words after a refusal for `reason` (None for a reason it has none for)."""
+    return _AFTER.get(reason)
+
+
 def refusal_reasons() -> tuple[str, ...]:
     """Every ``details.reason`` a refusal can give."""
     return tuple(_HINTS)
@@ -55,11 +73,15 @@ def model_only_texts() -> tuple[str, ...]:
 
 
 def refusal(
-    intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = ()
+    intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
+    *, stop: bool = False,
 ) -> dict[str, Any] | None:
     """The ``{error, message, hint, details}`` body that refuses this call, or None to let it run.
-    `said`: the words of the conversation so far (what a "there" or a "her" can refer to)."""
-    if intent is None or (spec is not None and spec.read_only):
+    `said`: the words of the conversation so far (what a "there" or a "her" can refer to).
+    `stop`: the tool is the robot's stop (voice role "stop"), never refused: the robot standing
+    still is never the unwanted action this check guards against, and a stop misread as talk
+    ("Hold it! Stay put!") must still stop."""
+    if intent is None or stop or (spec is not None and spec.read_only):
         return None
     name = spec.name if spec is not None else "?"
     kind = intent.refusal

@@ -26,7 +26,7 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import NOT_REQUESTED, refusal
+from robovoice.assistant.gate import NOT_REQUESTED, refusal, said_after
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.phrase import phrase_answer
@@ -81,19 +81,6 @@ def _asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned]) -> bool:
     return len(asked) > 1 and len(_ran(outcomes)) < len(asked)
 
 
-# What the robot says after refusing a call nobody asked for, when the model found no words of
-# its own (a small model often reads the gate's hint out instead, which is never said): one
-# line per reason of the check before acting (gate.py), true whatever the model had in mind.
-_AFTER_REFUSAL = {
-    "negated": "All right, I won't.",
-    "statement": "I see.",
-    "question": "I'm not sure. Could you ask me another way?",
-    "ability": "Yes, I can do that when you ask me to.",
-    "unfinished": "Sorry, I didn't catch all of that. Could you say it again?",
-    "unclear": "Which one do you mean?",
-}
-
-
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
     """What the person hears when the model ended a turn without words: true to what ran."""
     ran = _ran(outcomes)
@@ -101,8 +88,9 @@ def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str])
         refused = [o.result for o in outcomes if o.error == NOT_REQUESTED and o.result is not None]
         details = refused[-1].get("details") if refused else None
         reason = details.get("reason") if isinstance(details, dict) else None
-        if isinstance(reason, str) and reason in _AFTER_REFUSAL:
-            return _AFTER_REFUSAL[reason]
+        after = said_after(reason) if isinstance(reason, str) else None
+        if after is not None:
+            return after
         return "Sorry, I'm not sure what you would like me to do. Could you say it another way?"
     if ran[-1].is_error:
         return "Sorry, that did not work."
@@ -327,11 +315,8 @@ class Assistant:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
-        # a stop is never refused: the robot standing still is never the unwanted action the
-        # check guards against, and a stop misread as talk ("Hold it! Stay put!") must still stop
         voice = self.tools.voice().get(request.name)
-        refused = None if voice is not None and voice.role == "stop" else refusal(intent, spec, request.arguments,
-                                                                                    said)
+        refused = refusal(intent, spec, request.arguments, said, stop=voice is not None and voice.role == "stop")
         if refused is not None:  # the user did not ask for this: it never reaches the robot
             outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)
         elif request.arguments_error is not None:

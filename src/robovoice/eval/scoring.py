@@ -18,13 +18,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from robovoice.assistant.gate import NOT_REQUESTED
 from robovoice.eval.cases import Case, ExpectedCall
 
 # Errors a call can end with after the robot started acting on it: it may have moved.
 ACTED_ERRORS = frozenset({"cancelled", "timeout", "battery_empty"})
-# a call the assistant's own check before acting refused (assistant/gate.py): it never reached
-# the robot, so it neither fails a case as a forbidden call nor passes one as an expected call
-NEVER_SENT = "not_requested"
 
 
 @dataclass(frozen=True, slots=True)
@@ -98,7 +96,9 @@ def score_case(case: Case, calls: Sequence[MadeCall]) -> Verdict:
     if ran:
         actuations = tuple(c.tool for c in ran if c.actuation)
         return Verdict(False, f"called forbidden tool(s): {', '.join(map(_describe, ran))}{note}", actuations)
-    sent = [c for c in calls if c.error != NEVER_SENT]
+    # a call the check before acting refused (assistant/gate.py) never reached the robot: it
+    # neither fails a case as a forbidden call nor passes one as an expected call
+    sent = [c for c in calls if c.error != NOT_REQUESTED]
     for candidate in case.candidates:
         if sequence_matches(candidate, sent):
             return Verdict(True, f"ok{note}")
