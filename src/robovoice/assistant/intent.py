@@ -170,10 +170,10 @@ _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
 
 
-# An utterance whose last request ends on a word that needs one after it was cut off (speech-to-text keeps what
-# was said: "please switch the…", "can you drive over to?"); the model would fill in the rest.
-# A preposition may end a finished request whose object came before it ("list the places
-# you can drive to"); an article or a conjunction may not.
+# An utterance whose last request ends on a word that needs one after it was cut off
+# (speech-to-text keeps what was said: "please switch the…", "can you drive over to?"); the
+# model would fill in the rest. A preposition may end a finished request whose object came
+# before it ("list the places you can drive to"); an article or a conjunction may not.
 _ENDS_ON_ARTICLE = re.compile(r"\b(?:the|a|an|my|your|and|or)\s*(?:\.\.\.|\u2026)?[\s.?!]*$", re.IGNORECASE)
 _ENDS_ON_PREPOSITION = re.compile(r"\b(?:to|into|onto|with|at|for|of|from)\s*(?:\.\.\.|\u2026)?[\s.?!]*$",
                                   re.IGNORECASE)

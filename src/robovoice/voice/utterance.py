@@ -54,22 +54,19 @@ def _wake_phrase_end(text: str, phrase: str) -> int | None:
     words = list(re.finditer(r"[A-Za-z']+", text))
     target = phrase.lower().split()
 
-    def like(start: int, k: int) -> bool:
-        heard = " ".join(w.group(0).lower() for w in words[start:start + k])
-        return difflib.SequenceMatcher(None, heard, " ".join(target[-k:])).ratio() >= 0.75
-
     for k in range(len(target), 0, -1):
-        if len(words) >= k and like(0, k):
+        if len(words) >= k and _like(" ".join(w.group(0) for w in words[:k]), " ".join(target[-k:])):
             return words[k - 1].end()
     k = len(target)  # after other talk: the whole phrase, each word close ("the Jarvis mode" is no wake)
     for start in range(1, min(WAKE_PREFIX_WORDS, len(words) - k) + 1):
-        if all(_like_word(words[start + i].group(0), target[i]) for i in range(k)):
+        if all(_like(words[start + i].group(0), target[i]) for i in range(k)):
             return words[start + k - 1].end()
     return None
 
 
-def _like_word(heard: str, word: str) -> bool:
-    return difflib.SequenceMatcher(None, heard.lower(), word).ratio() >= 0.75
+def _like(heard: str, said: str) -> bool:
+    """`heard` is `said` as speech-to-text may spell it."""
+    return difflib.SequenceMatcher(None, heard.lower(), said).ratio() >= 0.75
 
 
 def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
