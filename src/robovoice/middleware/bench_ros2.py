@@ -167,22 +167,18 @@ async def run_ros2_bench(*, domain: int = 231, rounds: int = 6, ingest_s: float 
                         await middleware.call("bench", SERVICE, binding_args, timeout=5)
                         return time.perf_counter() - t0
 
-                    samples: list[list[float]] = [[], [], [], [], [], []]
                     async with _memory_tool("auto") as memory, _memory_tool("legacy") as memory_session:
+                        series = {"adapter": adapter, "mcp": mcp, "memory": memory, "mcp_session": mcp_session,
+                                  "memory_session": memory_session}
+                        samples: dict[str, list[float]] = {name: [] for name in ("bare", *series)}
                         for _ in range(20):  # warm-up
-                            await mcp()
-                            await mcp_session()
-                            await adapter()
-                            await memory()
-                            await memory_session()
                             bare.call()
-                        for _ in range(rounds):
-                            samples[0] += [bare.call() for _ in range(BLOCK)]
-                            samples[1] += [await adapter() for _ in range(BLOCK)]
-                            samples[2] += [await mcp() for _ in range(BLOCK)]
-                            samples[3] += [await memory() for _ in range(BLOCK)]
-                            samples[4] += [await mcp_session() for _ in range(BLOCK)]
-                            samples[5] += [await memory_session() for _ in range(BLOCK)]
+                            for timed in series.values():
+                                await timed()
+                        for _ in range(rounds):  # interleaved blocks, in this order
+                            samples["bare"] += [bare.call() for _ in range(BLOCK)]
+                            for name, timed in series.items():
+                                samples[name] += [await timed() for _ in range(BLOCK)]
                     ingest = await _ingest(server, ingest_s)
                     killed = time.monotonic()
                     os.killpg(child.pid, signal.SIGKILL)
@@ -199,13 +195,15 @@ async def run_ros2_bench(*, domain: int = 231, rounds: int = 6, ingest_s: float 
             child.wait(5)
             if child.stdout is not None:
                 child.stdout.close()
-    stats = [Stats.of(s) for s in samples]
+    stats = {name: Stats.of(s) for name, s in samples.items()}
+    bare_ms = stats["bare"].median_ms
     return Ros2BenchReport(
-        bare_rclpy=stats[0], adapter_call=stats[1], mcp_call=stats[2], mcp_memory_call=stats[3],
-        mcp_session_call=stats[4], mcp_session_memory_call=stats[5],
-        mcp_minus_bare_ms=stats[2].median_ms - stats[0].median_ms,
-        mcp_session_minus_bare_ms=stats[4].median_ms - stats[0].median_ms,
-        mcp_ratio=stats[2].median_ms / stats[0].median_ms,
+        bare_rclpy=stats["bare"], adapter_call=stats["adapter"], mcp_call=stats["mcp"],
+        mcp_memory_call=stats["memory"], mcp_session_call=stats["mcp_session"],
+        mcp_session_memory_call=stats["memory_session"],
+        mcp_minus_bare_ms=stats["mcp"].median_ms - bare_ms,
+        mcp_session_minus_bare_ms=stats["mcp_session"].median_ms - bare_ms,
+        mcp_ratio=stats["mcp"].median_ms / bare_ms,
         ingest=ingest, kill_noticed_s=kill_s,
     )
 
