@@ -7,12 +7,12 @@ from __future__ import annotations
 import numpy as np
 
 from robovoice.audio.fakes import EnergyVAD, ScriptedWakeDetector, ToneWakeDetector
-from robovoice.audio.format import MODEL_FORMAT, AudioChunk
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, concat
 from robovoice.audio.vad import Endpointer, SpeechSegmenter
 from robovoice.audio.wake import WakeDecider, WakeWordSpotter
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.echo import PlaybackReference
-from robovoice.voice.listener import FRAME_SAMPLES, WAKE_WINDOW_S, HeardWake, Listener
+from robovoice.voice.listener import FRAME_SAMPLES, PLAYBACK_MATCH_WAIT_S, WAKE_WINDOW_S, HeardWake, Listener
 
 from .voice_kit import WAKE_TONE_HZ, tone
 
@@ -68,3 +68,17 @@ def test_the_raised_threshold_covers_the_audio_the_detector_scores() -> None:
     assert thresholds[0.96] == normal  # nothing played yet
     assert thresholds[1.2] == raised and thresholds[2.4] == raised  # up to the window after the tail
     assert thresholds[3.12] == normal
+
+
+def test_a_wake_heard_a_frame_before_the_playback_says_it_waits_for_the_playbacks_score() -> None:
+    # the playback talks for 0.24 s, then says the wake phrase; the microphone's detector fires
+    # on the frame before the playback's own detector scores it (either may cross first: a
+    # remote caller's "Hey Jarvis" in the demo)
+    said_by_remote = concat([tone(0.24, hz=440.0), tone(0.26, hz=WAKE_TONE_HZ)])
+    (wake,), _ = listen(said_by_remote, fires_at=PLAYBACK[0] + 0.28)
+    assert wake.during_playback and not wake.near_end, "the playback said it a frame later: its own voice"
+    assert wake.playback_score > 0.5
+    talk = tone(0.5, hz=440.0)
+    (person,), _ = listen(talk, fires_at=PLAYBACK[0] + 0.28)
+    assert person.during_playback and person.near_end and person.at == wake.at
+    assert PLAYBACK_MATCH_WAIT_S <= 2 * FRAME_S  # a person's barge-in waits at most two frames

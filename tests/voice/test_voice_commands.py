@@ -36,7 +36,8 @@ async def _robovoice(*args: str, timeout: float = 500.0) -> tuple[int, str]:
 async def test_demo_runs_the_scripted_conversation(tmp_path: Path) -> None:
     async with FakeOpenAIServer(default=CallbackReply(keyword_router)) as server:
         code, out = await _robovoice("demo", "--output-dir", str(tmp_path), "--llm", f"{server.base_url}#fake-model")
-    assert code == 0, out[-3000:]
+    failed = [block for block in out.split("── ")[1:] if "✘ FAILED" in block]
+    assert code == 0, "\n".join(failed) + out[-2000:]
     assert "8/8 steps did the right thing" in out
     for needle in ("→ navigate_to(target=\"kitchen\")", "! STOP (\"Stop the robot!\"): stop_robot, straight",
                    "■ robot stopped", "latency from end of speech: transcript"):
@@ -59,7 +60,8 @@ async def test_assist_processes_wav_files_in_one_conversation(tmp_path: Path) ->
         code, out = await _robovoice("assist", "--robot", "sim", "--sim-speed", "10", "--llm",
                                      f"{server.base_url}#fake-model", "--input", *map(str, files),
                                      "--output-dir", str(tmp_path))
-    assert code == 0, out[-3000:]
+    failed = [block for block in out.split("── ")[1:] if "✘ FAILED" in block]
+    assert code == 0, "\n".join(failed) + out[-2000:]
     assert "→ set_projector_power(on=true)" in out and "→ navigate_to(target=\"kitchen\")" in out
     assert "speech ignored: no wake word" in out  # the middle file has no wake word
     assert len(list(tmp_path.glob("turn-*.wav"))) == 2

@@ -9,7 +9,8 @@ listener's own executor. Per 80 ms frame of 16 kHz microphone audio it
 4. while something plays, also scores the *playback itself* with a second wake word
    detector: a wake word heard on the microphone while the playback said it (the robot's
    own "Hey Jarvis", or a remote caller's) is the robot's own voice and is rejected,
-   however well or badly the echo canceller has converged;
+   however well or badly the echo canceller has converged (a wake the playback has not
+   matched yet waits `PLAYBACK_MATCH_WAIT_S` for its next scores: either may fire first);
 5. judges every utterance that overlaps playback with `EchoMeter`: is it the person
    (louder than what the echo canceller leaves) or what is left of the robot's own voice?
 
@@ -19,6 +20,7 @@ pipeline's (`turns.TurnTaking`).
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import time
@@ -43,6 +45,10 @@ FRAME_SAMPLES = 1280  # 80 ms: one wake word frame, five echo canceller blocks
 # when anything played in that window, even if the playback (a sentence ending in "Hey Jarvis",
 # the next one not yet synthesised) stopped before the detector fired.
 WAKE_WINDOW_S = 1.2
+# The microphone's detector and the playback's cross their thresholds within a frame or two of
+# each other, either first: a wake heard during playback that the playback has not (yet) matched
+# waits this long for the playback's next scores before it counts as the person's.
+PLAYBACK_MATCH_WAIT_S = 0.16
 _REF_ACTIVE = 1e-8  # reference power above which the speaker counts as playing (-80 dBFS)
 
 
@@ -176,6 +182,7 @@ class Listener:
         self._playback_detector = playback_detector if reference is not None else None
         self._playback_scores: deque[tuple[float, float]] = deque()
         self._playback_idle_frames = 0
+        self._unmatched: list[HeardWake] = []  # wakes during playback waiting for its later scores
         self.config = echo
         self._aec = (
             EchoCanceller(partitions=self.config.partitions, step=self.config.step)
@@ -205,6 +212,7 @@ class Listener:
         self._onset = None
         self._paused = False
         self._playback_scores.clear()
+        self._unmatched.clear()
         if self._playback_detector is not None:
             self._playback_detector.reset()
 
@@ -229,7 +237,7 @@ class Listener:
 
     def flush(self) -> Heard:
         """End of the stream: close an utterance in progress."""
-        events: list[HeardEvent] = []
+        events: list[HeardEvent] = self._matched(self.now, final=True)
         for event in self.segmenter.flush():
             if isinstance(event, SpeechEnded):
                 events.append(self._utterance(event))
@@ -254,7 +262,7 @@ class Listener:
         # the raised threshold holds while the audio the detector scores holds playback
         playing = self._playing_during(t1 - WAKE_WINDOW_S, t1)
         self.spotter.decider.set_threshold(self.config.playback_wake_threshold if playing else None)
-        events: list[HeardEvent] = []
+        events: list[HeardEvent] = self._matched(t1)
         for wake in self.spotter.feed(cleaned):
             during = self._playing_during(wake.timestamp - WAKE_WINDOW_S, wake.timestamp)
             near, own = True, 0.0
@@ -262,6 +270,9 @@ class Listener:
                 own = self._playback_score(wake.timestamp)
                 if self._playback_detector is not None:
                     near = own < self.config.playback_match_score
+                    if near:  # not matched yet: the playback's next frames decide
+                        self._unmatched.append(HeardWake(wake.score, wake.timestamp, during, near, own))
+                        continue
                 else:  # no detector on the playback: fall back on the echo levels
                     _, near = self.meter.judge(wake.timestamp - 1.0, wake.timestamp)
             events.append(HeardWake(wake.score, wake.timestamp, during, near, own))
@@ -328,8 +339,21 @@ class Listener:
             self._playback_scores.popleft()
 
     def _playback_score(self, at: float) -> float:
-        """The playback's highest wake score in the wake window up to `at` (and one frame after)."""
-        return max((s for t, s in self._playback_scores if at - WAKE_WINDOW_S <= t <= at + 0.1), default=0.0)
+        """The playback's highest wake score in the wake window up to `at` and the wait after it."""
+        return max((s for t, s in self._playback_scores if at - WAKE_WINDOW_S <= t <= at + PLAYBACK_MATCH_WAIT_S),
+                   default=0.0)
+
+    def _matched(self, now: float, *, final: bool = False) -> list[HeardEvent]:
+        """The waiting wakes whose wait is over at `now` (all of them when `final`), judged again
+        with the playback's scores since: the person's, or the playback's after all."""
+        done = [w for w in self._unmatched if final or now >= w.at + PLAYBACK_MATCH_WAIT_S]
+        self._unmatched = [w for w in self._unmatched if w not in done]
+        events: list[HeardEvent] = []
+        for wake in done:
+            own = self._playback_score(wake.at)
+            events.append(dataclasses.replace(wake, near_end=own < self.config.playback_match_score,
+                                              playback_score=own))
+        return events
 
     def _utterance(self, ended: SpeechEnded) -> HeardUtterance:
         share, near = self.meter.judge(ended.start, ended.end)
