@@ -35,6 +35,30 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
     assert tool_message["role"] == "tool" and "not to do this now" in tool_message["content"]
 
 
+async def test_after_a_refusal_the_model_never_claims_the_refused_action_done() -> None:
+    """A small model words the refused call as done ("The projector is now on."): a false claim
+    the person would believe. It is not said; what is true is."""
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("set_projector_power", on=True), TextReply("The projector is now on. Anything else?")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("Are you able to switch on a projector?")
+            assert robot.sim is not None and not robot.sim.state.projector_on
+            assert result.reply == "Anything else?"
+        finally:
+            await backend.aclose()
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("set_projector_power", on=True), TextReply("Done, the projector has been switched on.")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("Are you able to switch on a projector?")
+        finally:
+            await backend.aclose()
+    assert result.reply == "Yes, I can do that when you ask me to."  # the refusal's own line
+
+
 async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     script: list[ScriptedReply] = [
         call("navigate_to", target="kitchen"),

@@ -14,7 +14,7 @@ from robovoice.assistant.events import SentenceReady, ToolReturned, TurnEvent
 from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts, refusal_reasons
 from robovoice.assistant.loop import Assistant, wordless_reply
 from robovoice.assistant.prompt import SYSTEM_PROMPT
-from robovoice.assistant.speech_guard import ModelOnlyText, speakable, unspeakable_in
+from robovoice.assistant.speech_guard import ModelOnlyText, claimed_action_in, speakable, unspeakable_in
 from robovoice.config import RobotConfig
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
@@ -124,3 +124,21 @@ def test_every_refusal_reason_has_words_of_the_robots_own(reason: str) -> None:
                            {"error": NOT_REQUESTED, "details": {"tool": "navigate_to", "reason": reason}})
     reply = wordless_reply([refused], ())
     assert not reply.startswith("Sorry, I'm not sure what you would like") and speakable(reply) == reply
+
+
+@pytest.mark.parametrize("sentence", [
+    "The projector is now on.", "I have turned on the projector.", "I've started a video call with Anna.",
+    "Calling Anna now.", "On my way to the kitchen.", "Done.", "OK, done!", "Sure, heading to the hallway.",
+    "The projector has been switched on.", "I\u2019m now calling Ben.",
+])
+def test_a_sentence_claiming_an_action_is_recognised(sentence: str) -> None:
+    assert claimed_action_in(sentence) is not None
+
+
+@pytest.mark.parametrize("sentence", [
+    "All right, I won't.", "I haven't turned it on.", "I will not drive anywhere.", "Which one do you mean?",
+    "Your battery is at 84 percent.", "I can switch the projector on if you like.", "The projector is off.",
+    "Okay, I will stay here.", "I'm glad Ben phoned.", "Yes, I can do that when you ask me to.",
+])
+def test_a_sentence_that_claims_nothing_or_denies_is_not(sentence: str) -> None:
+    assert claimed_action_in(sentence) is None

@@ -32,7 +32,7 @@ from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import FIRST_STEP_HINT, NEXT_STEP_HINT, SYSTEM_PROMPT
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
-from robovoice.assistant.speech_guard import speakable
+from robovoice.assistant.speech_guard import claimed_action_in, speakable
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
 from robovoice.llm.base import (
@@ -166,13 +166,15 @@ class Assistant:
         steps = 0
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
         answer_now = False
+        refused = acted = False  # the check before acting refused a call / an actuation reached the robot
         for step in range(max_steps):
             steps = step + 1
             # On the last step the model gets no tools, so the turn ends with words, not a call.
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
             try:
-                text, requested = await self._model_step(messages, specs, metrics, emit)
+                text, requested = await self._model_step(messages, specs, metrics, emit,
+                                                         no_action=refused and not acted)
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
                 fell_back = True
@@ -208,6 +210,8 @@ class Assistant:
                     looked_up.add(_call_key(request))
                 else:
                     looked_up.clear()  # an action may change what a look-up returns
+                    refused = refused or returned.error == NOT_REQUESTED
+                    acted = acted or returned.error != NOT_REQUESTED
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
             more = _asked_left(asked, outcomes) and step < max_steps - 2
@@ -257,8 +261,11 @@ class Assistant:
         return messages, intent
 
     async def _model_step(
-        self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit
+        self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit,
+        *, no_action: bool = False,
     ) -> tuple[str, list[ToolCallRequested]]:
+        """One model step, its sentences said as they come. `no_action`: a call was refused and no
+        action has run this turn, so a sentence claiming one was done is false and not said."""
         splitter = SentenceSplitter()
         text: list[str] = []
         requested: list[ToolCallRequested] = []
@@ -276,7 +283,7 @@ class Assistant:
             match event:
                 case TextDelta(delta):
                     for sentence in splitter.feed(delta):
-                        await self._say_speakable(sentence, text, metrics, emit)
+                        await self._say_speakable(sentence, text, metrics, emit, no_action)
                 case ToolCallRequested():
                     requested.append(event)
                 case Finished():
@@ -285,20 +292,27 @@ class Assistant:
         metrics.model_ms += waited * 1000.0
         rest = splitter.flush()
         if rest:
-            await self._say_speakable(rest, text, metrics, emit)
+            await self._say_speakable(rest, text, metrics, emit, no_action)
         for i, request in enumerate(requested):
             if not request.id:  # some servers omit ids; the history needs them to pair results
                 requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
                                                  request.raw_arguments, request.arguments_error)
         return " ".join(text).strip(), requested
 
-    async def _say_speakable(self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit) -> None:
+    async def _say_speakable(
+        self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, no_action: bool = False
+    ) -> None:
         """Say a sentence of the model's and keep it in `said`, unless it reads out words meant
-        for the model only or tool-call syntax (`speech_guard`): then it is neither said nor
-        kept, and a turn left with nothing said ends with `wordless_reply`, not in silence."""
+        for the model only or tool-call syntax (`speech_guard`), or claims an action done when
+        none was (`no_action`): then it is neither said nor kept, and a turn left with nothing
+        said ends with `wordless_reply`, not in silence."""
         spoken = speakable(sentence)
         if spoken is None:
             log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)
+            return
+        claim = claimed_action_in(spoken) if no_action else None
+        if claim is not None:
+            log.warning("not saying %r: it claims an action (%r) after a refusal, and none ran", sentence, claim)
             return
         said.append(spoken.strip())
         await self._say(spoken, metrics, emit)

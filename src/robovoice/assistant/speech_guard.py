@@ -107,3 +107,36 @@ def unspeakable_in(sentence: str, model_only: ModelOnlyText = MODEL_ONLY) -> str
     """The first piece of `sentence` that must never be spoken or shown: tool-call syntax, or
     words meant for the model only (`ModelOnlyText`); None when there is none."""
     return tool_syntax_in(sentence) or model_only.copied_in(sentence)
+
+
+# --- a claim that something was done ------------------------------------------------------------
+
+# After the check before acting refused a call and nothing else acted, a small model still often
+# words the refused action as done ("The projector is now on."): a false claim the person would
+# believe. Such a sentence says a state is now on/off, that the robot is on its way, that it is
+# (or has been) doing an action, or "done" — and denies nothing.
+_CLAIM = re.compile(
+    r"\b(?:is|are|'s) now (?:on|off|running|playing|started|moving|driving|connected|charging)\b"
+    r"|\b(?:is|are|'s|has been|have been) (?:now )?(?:turned|switched|started|ended|stopped) (?:on|off|now)?"
+    r"|\bon (?:my|its|our) way\b"
+    r"|^(?:(?:ok|okay|sure|alright|all right|right)\W+)?done\b"
+    r"|\b(?:i|i'?ve|i have|i'?m|i am|we'?re|it'?s|it is)\s+(?:now\s+|just\s+|already\s+)?"
+    r"(?:turned|switched|started|starting|called|calling|ended|ending|driving|driven|drove|heading|headed|gone"
+    r"|moving|moved|navigating|navigated|turning|switching|returning|returned|connecting|connected|dialling"
+    r"|dialing|ringing|rang|going to the|docking|docked)\b"
+    r"|^(?:(?:ok|okay|sure|alright|all right|right)\W+)?(?:calling|ringing|dialling|dialing|heading|driving"
+    r"|navigating|moving|going|turning|switching|starting|returning|docking)\b",
+    re.IGNORECASE,
+)
+_DENIAL = re.compile(r"\b(?:not|never|no|won'?t|cannot|can'?t)\b|n'?t\b", re.IGNORECASE)
+
+
+def claimed_action_in(sentence: str) -> str | None:
+    """The words of `sentence` that claim an action was done or is under way ("The projector is
+    now on.", "On my way.", "Calling Anna now."), or None: a sentence that denies anything
+    ("I won't", "I haven't turned it on") claims nothing."""
+    text = sentence.strip().replace("\u2019", "'")
+    if _DENIAL.search(text):
+        return None
+    found = _CLAIM.search(text)
+    return found.group(0).strip() if found is not None else None
