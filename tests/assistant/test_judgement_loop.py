@@ -59,6 +59,27 @@ async def test_after_a_refusal_the_model_never_claims_the_refused_action_done() 
     assert result.reply == "Yes, I can do that when you ask me to."  # the refusal's own line
 
 
+async def test_a_look_up_beside_an_action_is_offered_only_look_ups_then_the_action_follows() -> None:
+    """"Which room are you in? After that come to the bedroom.": on the look-up's step only
+    read-only tools are offered (the small model drove instead of looking); answered in words,
+    the next thing asked still follows."""
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [TextReply("I am in the living room."), call("navigate_to", target="bedroom")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            said = "Which room are you in? After that come to the bedroom."
+            result = await Assistant(backend, robot.tools).turn(said)
+        finally:
+            await backend.aclose()
+    first, second = server.requests[0].tool_names, server.requests[1].tool_names
+    assert "get_robot_pose" in first and "navigate_to" not in first and "set_projector_power" not in first
+    assert "navigate_to" in second
+    assert server.requests[1].last_user_text == "Now do the next thing I asked: come to the bedroom."
+    assert [c.name for c in result.calls] == ["navigate_to"]
+    assert result.reply.startswith("I am in the living room.")
+
+
 async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     script: list[ScriptedReply] = [
         call("navigate_to", target="kitchen"),

@@ -143,6 +143,21 @@ def test_the_rule_reads_the_request_and_the_step() -> None:
     # a look-up before acting never ends the turn, even with a phrase
     assert phrase_answer(asked, voice, [battery], read_only={"get_battery_state"}) is None
     assert phrase_answer(asked, voice, [drive, battery], read_only={"get_battery_state"}) is None
+    # ... but while the turn goes on with more asked, the look-up's phrase says what was found,
+    # even for a question ("how charged are you, then go to the kitchen")
+    compound = read_request("How charged are you? Then go to the kitchen.")
+    assert phrase_answer(compound, voice, [battery], read_only={"get_battery_state"},
+                         continuing=True) == "My battery is at 82 percent."
+    assert phrase_answer(compound, voice, [battery], read_only={"get_battery_state"}) is None
+    # an action's step still gets the model for a question about it ("go there; how far was it?")
+    assert phrase_answer(read_request("Go to the kitchen. How far was it?"), voice, [drive], continuing=True) is None
+
+
+def test_a_fresh_snapshots_message_fills_a_phrase_and_a_stale_one_does_not() -> None:
+    fresh = {"value": {"percent": 80.3, "charging": True}, "stamp": 1.0, "age_s": 0.01, "stale": False}
+    template = "My battery is at {percent:.0f} percent{charging:, and I am charging|}."
+    assert fill(template, result_fields({}, fresh)) == "My battery is at 80 percent, and I am charging."
+    assert fill(template, result_fields({}, {**fresh, "stale": True})) is None
 
 
 def test_yes_no_fields_pick_a_word_and_results_win_over_arguments() -> None:

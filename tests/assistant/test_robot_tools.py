@@ -23,10 +23,12 @@ async def test_voice_sections_reach_the_client_in_the_tools_meta() -> None:
                                                              "progress": "Still on my way, {message}.",
                                                              "success": "I am at the {arrived} now."}}
     assert meta["stop_robot"] == {"role": "stop", "say": {"success": "{was_moving:Stopped.|I am standing still.}"}}
-    assert meta["get_robot_pose"] == {"role": "pose", "say": {}}
+    assert meta["get_robot_pose"] == {"role": "pose", "say": {"success": "I am near the {nearest_place}."}}
     projector = "The projector {changed:is now|was already} {on:on|off}."
     assert meta["set_projector_power"] == {"say": {"success": projector}}
-    assert meta["get_battery_state"] is None
+    battery = "My battery is at {percent:.0f} percent{charging:, and I am charging|}."
+    assert meta["get_battery_state"] == {"say": {"success": battery}}
+    assert meta["list_contacts"] is None
     assert {name: v.role for name, v in voice.items() if v.role} == {
         "navigate_to": "motion", "return_to_dock": "motion", "stop_robot": "stop", "get_robot_pose": "pose"}
 

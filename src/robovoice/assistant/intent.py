@@ -63,6 +63,14 @@ class Intent:
         return tuple(c.text for c in self.clauses if c.kind in wanted)
 
     @property
+    def lookups(self) -> tuple[bool, ...]:
+        """For each of `steps`: whether it only asks to be told something ("where are you",
+        "tell me your battery level"), which a look-up answers and no action may."""
+        wanted = (ClauseKind.REQUEST, ClauseKind.QUESTION)
+        return tuple(c.kind is ClauseKind.QUESTION or bool(_TELL_ME.match(_FILLER.sub("", c.text.strip())))
+                     for c in self.clauses if c.kind in wanted)
+
+    @property
     def refusal(self) -> ClauseKind | None:
         """Why no action was asked for (the first non-request kind that explains it), or None."""
         if self.asks_action:
@@ -87,6 +95,7 @@ class Intent:
         return negated - asked
 
 
+_TELL_ME = re.compile(r"(?:please\s+)?(?:tell|let)\s+me\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person)\b", re.IGNORECASE)
 
 

@@ -30,7 +30,7 @@ from robovoice.assistant.gate import NOT_REQUESTED, refusal, said_after
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.phrase import phrase_answer
-from robovoice.assistant.prompt import FIRST_STEP_HINT, NEXT_STEP_HINT, SYSTEM_PROMPT
+from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import claimed_action_in, speakable
 from robovoice.audio.sentences import SentenceSplitter
@@ -76,9 +76,10 @@ def _ran(outcomes: Sequence[ToolReturned]) -> list[ToolReturned]:
     return [o for o in outcomes if o.error != NOT_REQUESTED]
 
 
-def _asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned]) -> bool:
-    """A compound request with things asked that no call has done yet."""
-    return len(asked) > 1 and len(_ran(outcomes)) < len(asked)
+def _asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: int = 0) -> bool:
+    """A compound request with things asked that no call has done yet (nor, for a look-up,
+    `worded` answers in words alone)."""
+    return len(asked) > 1 and len(_ran(outcomes)) + worded < len(asked)
 
 
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
@@ -156,6 +157,8 @@ class Assistant:
         await emit(TurnStarted(ChatMessage("user", user).text))
         messages, intent = self._opening(user)
         asked = intent.steps if intent is not None else ()
+        lookups = intent.lookups if intent is not None else ()
+        worded = 0  # look-ups of a compound request the model answered in words, without a call
         # what a "there" or a "her" can refer to: what the person and the robot said before
         said = {w for m in self._history if m.role in ("user", "assistant") for w in words(m.text)}
         max_steps = max(self.max_steps, len(asked) + 2)
@@ -172,6 +175,10 @@ class Assistant:
             # On the last step the model gets no tools, so the turn ends with words, not a call.
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
+            due = len(_ran(outcomes)) + worded
+            lookup = len(asked) > 1 and due < len(asked) and lookups[due]
+            if lookup:  # a compound request's look-up ("tell me where you are, then …"): nothing acts on it
+                specs = [s for s in specs if s.read_only]
             try:
                 text, requested = await self._model_step(messages, specs, metrics, emit,
                                                          no_action=refused and not acted)
@@ -186,6 +193,9 @@ class Assistant:
                 log.info("the model called %s on a step that offers no tools; not run", [r.name for r in requested])
                 requested = []
             by_name = {spec.name: spec for spec in specs}
+            if lookup and any(r.name not in by_name for r in requested):
+                log.info("the model called %s on a look-up step; not run", [r.name for r in requested])
+                requested = [r for r in requested if r.name in by_name]
             if requested and all(_is_repeat(r, by_name, looked_up) for r in requested):
                 # the same look-up again: its result is already in front of the model (a small
                 # model on a strict call grammar repeats it until tools are withdrawn). The
@@ -193,11 +203,18 @@ class Assistant:
                 log.info("the model repeated %s; not run", [r.name for r in requested])
                 requested = []
                 if not text:
-                    answer_now = not _asked_left(asked, outcomes)
+                    answer_now = not _asked_left(asked, outcomes, worded)
                     continue
             if text:
                 replies.append(text)
             messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
+            if not requested and lookup and text and step < max_steps - 2:
+                # the look-up answered in words: the next thing asked is still to do
+                worded += 1
+                if _asked_left(asked, outcomes, worded):
+                    due = len(_ran(outcomes)) + worded
+                    messages.append(ChatMessage("user", step_hint(asked[due], lookups[due], first=False)))
+                    continue
             if not requested:
                 break
             ran: list[tuple[ToolCalled, ToolReturned]] = []
@@ -214,10 +231,13 @@ class Assistant:
                     acted = acted or returned.error != NOT_REQUESTED
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
-            more = _asked_left(asked, outcomes) and step < max_steps - 2
+            more = _asked_left(asked, outcomes, worded) and step < max_steps - 2
             # the tool's own phrase answers this step when it fills and nothing was asked it
             # does not answer: no model step just to word it (assistant/phrase.py)
-            phrase = phrase_answer(intent, self.tools.voice(), ran, {s.name for s in specs if s.read_only})
+            # (a look-up's phrase too when more is asked: the turn goes on, and the person hears
+            # what was found before the robot moves on)
+            phrase = phrase_answer(intent, self.tools.voice(), ran, {s.name for s in specs if s.read_only},
+                                   continuing=more)
             if phrase is not None:
                 await self._say(phrase, metrics, emit)
                 replies.append(phrase)
@@ -228,7 +248,8 @@ class Assistant:
             if more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next (docs/llm.md)
-                messages.append(ChatMessage("user", NEXT_STEP_HINT.format(asked[len(_ran(outcomes))])))
+                due = len(_ran(outcomes)) + worded
+                messages.append(ChatMessage("user", step_hint(asked[due], lookups[due], first=False)))
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             read_only = {s.name for s in await self.tools.specs() if s.read_only}
             words_ = wordless_reply(outcomes, read_only)
@@ -257,7 +278,7 @@ class Assistant:
         answering = bool(self._history) and self._history[-1].text.rstrip().endswith("?")
         intent = read_request(user, answering=answering) if isinstance(user, str) else None
         if intent is not None and len(intent.steps) > 1:  # a compound request: one thing at a time, in order
-            messages.append(ChatMessage("user", FIRST_STEP_HINT.format(intent.steps[0])))
+            messages.append(ChatMessage("user", step_hint(intent.steps[0], intent.lookups[0], first=True)))
         return messages, intent
 
     async def _model_step(

@@ -14,6 +14,10 @@ the answer to that step (docs/voice.md, "Spoken results"). It is used only when:
   which has a hint for each;
 - no call of the step is read-only: the model often looks something up (the battery, where
   the robot is) before it acts, and a phrase would end the turn before the action.
+
+A step of look-ups only is said by its phrases, question or not, while the turn goes on with
+more the person asked (`continuing`): the look-up was one of the things asked ("tell me where
+you are, then come here"), its phrase says what was found, and nothing ends there.
 """
 
 from __future__ import annotations
@@ -47,12 +51,15 @@ def asks_nothing(intent: Intent | None) -> bool:
 
 def phrase_answer(
     intent: Intent | None, voice: Mapping[str, VoiceDecl], step: Sequence[tuple[ToolCalled, ToolReturned]],
-    read_only: Collection[str] = (),
+    read_only: Collection[str] = (), *, continuing: bool = False,
 ) -> str | None:
     """The words that answer one model step's tool calls without the model, or None when
     the model must word the answer (see the module docstring). `read_only`: the names of the
-    read-only tools."""
-    if not step or not asks_nothing(intent) or any(called.name in read_only for called, _ in step):
+    read-only tools; `continuing`: the turn goes on with more the person asked."""
+    if not step or intent is None:
+        return None
+    looked_up = all(called.name in read_only for called, _ in step)
+    if not (continuing and looked_up) and (not asks_nothing(intent) or any(c.name in read_only for c, _ in step)):
         return None
     phrases = [result_phrase(voice.get(called.name), called, returned) for called, returned in step]
     if any(p is None for p in phrases):

@@ -18,4 +18,14 @@ When the tools have run, say briefly what you did."""
 # model reads them as the person's, but they are not, so they are never spoken (speech_guard).
 FIRST_STEP_HINT = "One thing at a time, in order. First: {}."
 NEXT_STEP_HINT = "Now do the next thing I asked: {}."
-STEP_HINTS = (FIRST_STEP_HINT, NEXT_STEP_HINT)
+# a look-up the small model tends to answer from nothing ("You are in the living room.")
+FIRST_LOOKUP_HINT = "One thing at a time, in order. First call the tool that finds out: {}."
+NEXT_LOOKUP_HINT = "Now call the tool that finds out the next thing I asked: {}."
+STEP_HINTS = (FIRST_STEP_HINT, NEXT_STEP_HINT, FIRST_LOOKUP_HINT, NEXT_LOOKUP_HINT)
+
+
+def step_hint(step: str, lookup: bool, *, first: bool) -> str:
+    """The hint for the step of a compound request the model does now (`lookup`: it asks to be told)."""
+    if first:
+        return (FIRST_LOOKUP_HINT if lookup else FIRST_STEP_HINT).format(step)
+    return (NEXT_LOOKUP_HINT if lookup else NEXT_STEP_HINT).format(step)

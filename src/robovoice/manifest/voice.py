@@ -81,10 +81,13 @@ def fill(template: str | None, fields: Mapping[str, Any]) -> str | None:
 
 def result_fields(arguments: Mapping[str, Any] | None, result: Mapping[str, Any] | None) -> dict[str, Any]:
     """The fields a `success` / `failure` phrase is filled from: the call's arguments, then the
-    plain values (text, numbers, yes/no) at the top of the structured result (which win).
-    Empty text counts as missing."""
+    plain values (text, numbers, yes/no) of a fresh snapshot's message, then those at the top
+    of the structured result (which win). Empty text counts as missing."""
     merged: dict[str, Any] = {}
-    for part in (arguments or {}, result or {}):
+    value = (result or {}).get("value")
+    # a snapshot tool returns its message under "value"; a stale message fills nothing
+    message = value if isinstance(value, Mapping) and (result or {}).get("stale") is False else {}
+    for part in (arguments or {}, message, result or {}):
         for key, item in part.items():
             if isinstance(item, (str, int, float, bool)) and item != "":
                 merged[key] = item
