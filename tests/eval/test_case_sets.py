@@ -7,6 +7,8 @@ import wave
 from collections import Counter
 from pathlib import Path
 
+import pytest
+
 from robovoice.eval.cases import load_cases
 
 DATA = Path(__file__).parent.parent / "data" / "eval"
@@ -54,14 +56,18 @@ def test_text_test_set_v3_is_fresh_and_forbids_every_actuation_where_nothing_was
             assert len(case.expect) >= 2, case.id
 
 
-def test_text_test_set_v4_is_fresh_and_forbids_every_actuation_where_nothing_was_asked() -> None:
-    cases = load_cases(DATA / "text-test-4.jsonl")
+@pytest.mark.parametrize("version", [4, 5])
+def test_text_test_sets_from_v4_are_fresh_and_forbid_every_actuation_where_nothing_was_asked(version: int) -> None:
+    """v5 was written by someone who read neither the rules nor any earlier set."""
+    cases = load_cases(DATA / f"text-test-{version}.jsonl")
     assert len(cases) == 60 and len({c.id for c in cases}) == 60
-    earlier = [c for name in ("text.jsonl", "text-test.jsonl", "text-test-2.jsonl", "text-test-3.jsonl")
-               for c in load_cases(DATA / name)]
+    names = ["text.jsonl", "text-test.jsonl", *(f"text-test-{v}.jsonl" for v in range(2, version))]
+    earlier = [c for name in names for c in load_cases(DATA / name)]
     assert not {c.id for c in earlier} & {c.id for c in cases}
     said = {c.text.lower() for c in earlier if c.text}
-    assert all(c.text for c in cases) and not said & {str(c.text).lower() for c in cases}  # phrasings no set used
+    # phrasings no set used (v5's writer, who saw no earlier set, hit one greeting of v3's: small talk may repeat)
+    fresh = [c for c in cases if version < 5 or c.case_class != "chat"]
+    assert all(c.text for c in cases) and not said & {str(c.text).lower() for c in fresh}
     for case in cases:
         if case.case_class in ("mention", "ability", "chat") or (case.case_class == "negated" and not case.expect):
             assert set(case.forbid) == ACTUATION, case.id
