@@ -101,11 +101,13 @@ async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     assert len(server.requests) == 2
 
 
-async def test_a_stop_is_never_refused_even_when_the_words_read_as_talk() -> None:
+async def test_a_stop_is_refused_only_where_the_robot_stands_still() -> None:
     """"Hold it! Stay put!" reads as "carry on as you are" (a statement), and a drive asked in
-    the same words would be refused; the robot's stop tool (voice role "stop") is not."""
+    the same words would be refused; the robot's stop tool (voice role "stop") is not while the
+    robot moves. Where its pose snapshot says it stands still, a stop the words never asked for
+    ("Wait, don't call anyone.") is refused: it would do nothing the person asked."""
     async with connect_robot(SIM) as robot, FakeOpenAIServer(
-        [call("stop_robot"), TextReply("I have stopped.")]
+        [call("stop_robot"), call("stop_robot"), TextReply("All right.")]  # the first is said by its phrase
     ) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
         try:
@@ -113,7 +115,9 @@ async def test_a_stop_is_never_refused_even_when_the_words_read_as_talk() -> Non
             await robot.sim.apply_setup("driving")
             assert robot.sim.state.moving
             result = await Assistant(backend, robot.tools).turn("Hold it! Stay put!")
+            assert not robot.sim.state.moving
+            assert [o.error for o in result.outcomes] == [None]
+            standing = await Assistant(backend, robot.tools).turn("Wait, don't call anyone.")
         finally:
             await backend.aclose()
-        assert not robot.sim.state.moving
-    assert [o.error for o in result.outcomes] == [None]
+    assert [o.error for o in standing.outcomes] == [NOT_REQUESTED]

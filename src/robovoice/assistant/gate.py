@@ -1,7 +1,8 @@
 """The check before acting: an actuation tool runs only when the user asked for it now.
 
-Read-only tools (MCP ``readOnlyHint``) and the robot's stop always run: looking things up or
-standing still is never an unwanted action. An actuation tool the model calls is refused
+Read-only tools (MCP ``readOnlyHint``) always run: looking things up is never an unwanted
+action (the robot's stop is refused only where the robot stands still: the loop asks its pose
+snapshot, `loop.Assistant._standing_still`). An actuation tool the model calls is refused
 locally — it never reaches the robot — when the user's words (`intent.read_request`) asked
 for no action at all (a negated or postponed request, an ability question, talk that merely
 mentions a place or a person, a request cut off before its object), or when its arguments
@@ -74,14 +75,10 @@ def model_only_texts() -> tuple[str, ...]:
 
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
-    *, stop: bool = False,
 ) -> dict[str, Any] | None:
     """The ``{error, message, hint, details}`` body that refuses this call, or None to let it run.
-    `said`: the words of the conversation so far (what a "there" or a "her" can refer to).
-    `stop`: the tool is the robot's stop (voice role "stop"), never refused: the robot standing
-    still is never the unwanted action this check guards against, and a stop misread as talk
-    ("Hold it! Stay put!") must still stop."""
-    if intent is None or stop or (spec is not None and spec.read_only):
+    `said`: the words of the conversation so far (what a "there" or a "her" can refer to)."""
+    if intent is None or (spec is not None and spec.read_only):
         return None
     name = spec.name if spec is not None else "?"
     kind = intent.refusal

@@ -45,6 +45,7 @@ from robovoice.llm.base import (
     ToolSpec,
 )
 from robovoice.llm.failover import FALLBACK_MESSAGE
+from robovoice.manifest.voice import VoiceDecl
 
 log = logging.getLogger(__name__)
 
@@ -350,8 +351,13 @@ class Assistant:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
-        voice = self.tools.voice().get(request.name)
-        refused = refusal(intent, spec, request.arguments, said, stop=voice is not None and voice.role == "stop")
+        voice = self.tools.voice()
+        refused = refusal(intent, spec, request.arguments, said)
+        if refused is not None and request.name in voice and voice[request.name].role == "stop":
+            # the robot's stop when the words asked for nothing ("Hold it! Stay put!" read as
+            # talk): it runs unless the robot is known to stand still, where it would do nothing
+            # the person asked for ("Wait, don't call anyone." answered "I am standing still.")
+            refused = refused if await self._standing_still(voice) else None
         if refused is not None:  # the user did not ask for this: it never reaches the robot
             outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)
         elif request.arguments_error is not None:
@@ -369,6 +375,17 @@ class Assistant:
                                 outcome.error, outcome.structured)
         await emit(returned)
         return called, returned
+
+    async def _standing_still(self, voice: Mapping[str, VoiceDecl]) -> bool:
+        """The robot's pose snapshot (voice role "pose") says it is not moving; False when
+        there is none, it fails or it does not say."""
+        pose = next((name for name, decl in sorted(voice.items()) if decl.role == "pose"), None)
+        if pose is None:
+            return False
+        outcome = await self.tools.call(pose, {})
+        body = outcome.structured if isinstance(outcome.structured, Mapping) else {}
+        value = body.get("value", body)
+        return not outcome.is_error and isinstance(value, Mapping) and value.get("moving") is False
 
     def _remember(self, turn_messages: list[ChatMessage]) -> None:
         """Keep a bounded history that starts at a user message (tool results stay paired).
