@@ -32,3 +32,19 @@ async def test_first_request_is_what_the_first_model_step_sends() -> None:
     assert [m.to_openai() for m in messages] == sent.messages
     assert [t.to_openai() for t in tools] == sent.body["tools"]
     assert sent.messages[1]["content"] == "Hello there" and sent.messages[-1]["content"].startswith("One thing")
+
+
+async def test_first_request_offers_a_look_up_step_only_the_read_only_tools_as_the_turn_does() -> None:
+    async with connect_robot(SIM) as robot, FakeOpenAIServer([TextReply("I am near the dock.")] * 3) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            assistant = Assistant(backend, robot.tools)
+            text = "Tell me where you are, then come to the kitchen."
+            messages, tools = await assistant.first_request(text)
+            await assistant.turn(text)
+        finally:
+            await backend.aclose()
+    sent = server.requests[0]
+    assert [m.to_openai() for m in messages] == sent.messages
+    assert [t.to_openai() for t in tools] == sent.body["tools"]
+    assert "get_robot_pose" in sent.tool_names and "navigate_to" not in sent.tool_names

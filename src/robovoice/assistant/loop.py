@@ -83,6 +83,12 @@ def _asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: 
     return len(asked) > 1 and len(_ran(outcomes)) + worded < len(asked)
 
 
+def _offered(specs: Sequence[ToolSpec], lookup: bool) -> list[ToolSpec]:
+    """The tools offered on a step: on a compound request's look-up ("tell me where you are,
+    then …") only the read-only ones, so nothing acts on it."""
+    return [s for s in specs if s.read_only or not lookup]
+
+
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
     """What the person hears when the model ended a turn without words: true to what ran."""
     ran = _ran(outcomes)
@@ -178,8 +184,7 @@ class Assistant:
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
             due = len(_ran(outcomes)) + worded
             lookup = len(asked) > 1 and due < len(asked) and lookups[due]
-            if lookup:  # a compound request's look-up ("tell me where you are, then …"): nothing acts on it
-                specs = [s for s in specs if s.read_only]
+            specs = _offered(specs, lookup)
             try:
                 text, requested = await self._model_step(messages, specs, metrics, emit,
                                                          no_action=refused and not acted)
@@ -268,8 +273,9 @@ class Assistant:
     async def first_request(self, text: str) -> tuple[list[ChatMessage], list[ToolSpec]]:
         """The messages and tools the first model step of a turn for `text` would send (the
         same code path as `turn`), without touching the history: for a speculative prefill."""
-        messages, _ = self._opening(text)
-        return messages, list(await self.tools.specs())
+        messages, intent = self._opening(text)
+        lookup = intent is not None and len(intent.steps) > 1 and intent.lookups[0]
+        return messages, _offered(await self.tools.specs(), lookup)
 
     def _opening(self, user: str | tuple[ContentPart, ...]) -> tuple[list[ChatMessage], Intent | None]:
         """The first step's messages for `user`, and the reading of the request (None for audio)."""
