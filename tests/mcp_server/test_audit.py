@@ -240,3 +240,14 @@ def test_serve_and_call_take_the_rotation_settings(tmp_path: Path, capsys: pytes
     capsys.readouterr()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["audit.jsonl", "audit.jsonl.1", "audit.jsonl.2"]
     assert [r["tool"] for r in read_audit(path).records] == ["get_battery_state"] * 3
+
+
+def test_a_gap_in_the_rotated_numbers_hides_no_file(tmp_path: Path) -> None:
+    """A writer killed between a rotation's renames (.2 moved to .3, .1 not yet to .2) leaves
+    a gap; the older files past it are still read, oldest first."""
+    path = tmp_path / "audit.jsonl"
+    for n, name in ((3, "oldest"), (1, "older")):
+        rotated_path(path, n).write_text(json.dumps({"tool": name}) + "\n")
+    path.write_text(json.dumps({"tool": "newest"}) + "\n")
+    (tmp_path / "audit.jsonl.bak").write_text("not a rotated file\n")
+    assert [r["tool"] for r in read_audit(path).records] == ["oldest", "older", "newest"]

@@ -253,14 +253,17 @@ class AuditReading:
 
 
 def audit_files(path: Path, *, rotated: bool = True) -> list[Path]:
-    """`path` and, with `rotated`, its rotated files that exist, oldest first."""
-    older: list[Path] = []
+    """`path` and, with `rotated`, its rotated files that exist, oldest first. Every number
+    counts, not only an unbroken run from 1: a writer killed in the middle of a rotation's
+    renames leaves a gap in the numbers, and the files past it still hold records."""
+    older: list[tuple[int, Path]] = []
     if rotated:
-        n = 1
-        while rotated_path(path, n).exists():
-            older.append(rotated_path(path, n))
-            n += 1
-    return [*reversed(older), *([path] if path.exists() else [])]
+        prefix = f"{path.name}."
+        for candidate in path.parent.glob(f"{path.name}.*"):
+            number = candidate.name[len(prefix):]
+            if number.isdigit() and candidate.is_file():
+                older.append((int(number), candidate))
+    return [*(p for _, p in sorted(older, reverse=True)), *([path] if path.exists() else [])]
 
 
 def iter_lines(path: Path) -> Iterator[tuple[int, dict[str, Any] | None, bool]]:
