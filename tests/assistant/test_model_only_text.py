@@ -12,9 +12,10 @@ import pytest
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.events import SentenceReady, ToolReturned, TurnEvent
 from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts, refusal_reasons
-from robovoice.assistant.loop import Assistant, wordless_reply
+from robovoice.assistant.loop import Assistant
 from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.assistant.speech_guard import ModelOnlyText, claimed_action_in, speakable, unspeakable_in
+from robovoice.assistant.turn_rules import wordless_reply
 from robovoice.config import RobotConfig
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend

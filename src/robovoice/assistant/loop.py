@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import logging
 import time
-from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from robovoice.assistant.events import (
@@ -26,13 +26,14 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import NOT_REQUESTED, refusal, said_after
+from robovoice.assistant.gate import NOT_REQUESTED, refusal
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import claimed_action_in, speakable
+from robovoice.assistant.turn_rules import asked_left, call_key, is_repeat, offered, ran_calls, wordless_reply
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
 from robovoice.llm.base import (
@@ -60,51 +61,6 @@ class TurnResult:
     outcomes: tuple[ToolReturned, ...]
     metrics: TurnMetrics
     fell_back: bool = False
-
-
-def _call_key(request: ToolCallRequested) -> str:
-    return request.name + json.dumps(request.arguments, sort_keys=True, default=str)
-
-
-def _is_repeat(request: ToolCallRequested, specs: Mapping[str, ToolSpec], looked_up: Collection[str]) -> bool:
-    """A read-only call already made with the same arguments, with no action since."""
-    spec = specs.get(request.name)
-    return spec is not None and spec.read_only and _call_key(request) in looked_up
-
-
-def _ran(outcomes: Sequence[ToolReturned]) -> list[ToolReturned]:
-    """The calls that reached the robot (the check before acting refused none of them)."""
-    return [o for o in outcomes if o.error != NOT_REQUESTED]
-
-
-def _asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: int = 0) -> bool:
-    """A compound request with things asked that no call has done yet (nor, for a look-up,
-    `worded` answers in words alone)."""
-    return len(asked) > 1 and len(_ran(outcomes)) + worded < len(asked)
-
-
-def _offered(specs: Sequence[ToolSpec], lookup: bool) -> list[ToolSpec]:
-    """The tools offered on a step: on a compound request's look-up ("tell me where you are,
-    then …") only the read-only ones, so nothing acts on it."""
-    return [s for s in specs if s.read_only or not lookup]
-
-
-def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
-    """What the person hears when the model ended a turn without words: true to what ran."""
-    ran = _ran(outcomes)
-    if not ran:
-        refused = [o.result for o in outcomes if o.error == NOT_REQUESTED and o.result is not None]
-        details = refused[-1].get("details") if refused else None
-        reason = details.get("reason") if isinstance(details, dict) else None
-        after = said_after(reason) if isinstance(reason, str) else None
-        if after is not None:
-            return after
-        return "Sorry, I'm not sure what you would like me to do. Could you say it another way?"
-    if ran[-1].is_error:
-        return "Sorry, that did not work."
-    if all(o.name in read_only for o in ran):  # a question: the answer is in a result nobody worded
-        return "Sorry, I found the answer but could not put it into words. Please ask me again."
-    return "Done."
 
 
 class Assistant:
@@ -182,9 +138,9 @@ class Assistant:
             # On the last step the model gets no tools, so the turn ends with words, not a call.
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
-            due = len(_ran(outcomes)) + worded
+            due = len(ran_calls(outcomes)) + worded
             lookup = len(asked) > 1 and due < len(asked) and lookups[due]
-            specs = _offered(specs, lookup)
+            specs = offered(specs, lookup)
             try:
                 text, requested = await self._model_step(messages, specs, metrics, emit,
                                                          no_action=refused and not acted)
@@ -202,14 +158,14 @@ class Assistant:
             if lookup and any(r.name not in by_name for r in requested):
                 log.info("the model called %s on a look-up step; not run", [r.name for r in requested])
                 requested = [r for r in requested if r.name in by_name]
-            if requested and all(_is_repeat(r, by_name, looked_up) for r in requested):
+            if requested and all(is_repeat(r, by_name, looked_up) for r in requested):
                 # the same look-up again: its result is already in front of the model (a small
                 # model on a strict call grammar repeats it until tools are withdrawn). The
                 # repeat is not run; the model answers now, or does the next thing asked.
                 log.info("the model repeated %s; not run", [r.name for r in requested])
                 requested = []
                 if not text:
-                    answer_now = not _asked_left(asked, outcomes, worded)
+                    answer_now = not asked_left(asked, outcomes, worded)
                     continue
             if text:
                 replies.append(text)
@@ -217,8 +173,8 @@ class Assistant:
             if not requested and lookup and text and step < max_steps - 2:
                 # the look-up answered in words: the next thing asked is still to do
                 worded += 1
-                if _asked_left(asked, outcomes, worded):
-                    due = len(_ran(outcomes)) + worded
+                if asked_left(asked, outcomes, worded):
+                    due = len(ran_calls(outcomes)) + worded
                     messages.append(ChatMessage("user", step_hint(asked[due], lookups[due], first=False)))
                     continue
             if not requested:
@@ -230,14 +186,14 @@ class Assistant:
                 ran.append((called, returned))
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
                 if spec is not None and spec.read_only:
-                    looked_up.add(_call_key(request))
+                    looked_up.add(call_key(request))
                 else:
                     looked_up.clear()  # an action may change what a look-up returns
                     refused = refused or returned.error == NOT_REQUESTED
                     acted = acted or returned.error != NOT_REQUESTED
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
-            more = _asked_left(asked, outcomes, worded) and step < max_steps - 2
+            more = asked_left(asked, outcomes, worded) and step < max_steps - 2
             # the tool's own phrase answers this step when it fills and nothing was asked it
             # does not answer: no model step just to word it (assistant/phrase.py)
             # (a look-up's phrase too when more is asked: the turn goes on, and the person hears
@@ -254,7 +210,7 @@ class Assistant:
             if more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next (docs/llm.md)
-                due = len(_ran(outcomes)) + worded
+                due = len(ran_calls(outcomes)) + worded
                 messages.append(ChatMessage("user", step_hint(asked[due], lookups[due], first=False)))
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             read_only = {s.name for s in await self.tools.specs() if s.read_only}
@@ -275,7 +231,7 @@ class Assistant:
         same code path as `turn`), without touching the history: for a speculative prefill."""
         messages, intent = self._opening(text)
         lookup = intent is not None and len(intent.steps) > 1 and intent.lookups[0]
-        return messages, _offered(await self.tools.specs(), lookup)
+        return messages, offered(await self.tools.specs(), lookup)
 
     def _opening(self, user: str | tuple[ContentPart, ...]) -> tuple[list[ChatMessage], Intent | None]:
         """The first step's messages for `user`, and the reading of the request (None for audio)."""

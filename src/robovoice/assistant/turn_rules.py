@@ -1,0 +1,57 @@
+"""The tool loop's rules for the steps of one turn (`loop.Assistant.turn`): which calls ran,
+what is still to do in a compound request, what a step offers, a repeated look-up, and the
+words of a turn the model ended without any."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Collection, Mapping, Sequence
+
+from robovoice.assistant.events import ToolReturned
+from robovoice.assistant.gate import NOT_REQUESTED, said_after
+from robovoice.llm.base import ToolCallRequested, ToolSpec
+
+
+def call_key(request: ToolCallRequested) -> str:
+    return request.name + json.dumps(request.arguments, sort_keys=True, default=str)
+
+
+def is_repeat(request: ToolCallRequested, specs: Mapping[str, ToolSpec], looked_up: Collection[str]) -> bool:
+    """A read-only call already made with the same arguments, with no action since."""
+    spec = specs.get(request.name)
+    return spec is not None and spec.read_only and call_key(request) in looked_up
+
+
+def ran_calls(outcomes: Sequence[ToolReturned]) -> list[ToolReturned]:
+    """The calls that reached the robot (the check before acting refused none of them)."""
+    return [o for o in outcomes if o.error != NOT_REQUESTED]
+
+
+def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: int = 0) -> bool:
+    """A compound request with things asked that no call has done yet (nor, for a look-up,
+    `worded` answers in words alone)."""
+    return len(asked) > 1 and len(ran_calls(outcomes)) + worded < len(asked)
+
+
+def offered(specs: Sequence[ToolSpec], lookup: bool) -> list[ToolSpec]:
+    """The tools offered on a step: on a compound request's look-up ("tell me where you are,
+    then …") only the read-only ones, so nothing acts on it."""
+    return [s for s in specs if s.read_only or not lookup]
+
+
+def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
+    """What the person hears when the model ended a turn without words: true to what ran."""
+    ran = ran_calls(outcomes)
+    if not ran:
+        refused = [o.result for o in outcomes if o.error == NOT_REQUESTED and o.result is not None]
+        details = refused[-1].get("details") if refused else None
+        reason = details.get("reason") if isinstance(details, dict) else None
+        after = said_after(reason) if isinstance(reason, str) else None
+        if after is not None:
+            return after
+        return "Sorry, I'm not sure what you would like me to do. Could you say it another way?"
+    if ran[-1].is_error:
+        return "Sorry, that did not work."
+    if all(o.name in read_only for o in ran):  # a question: the answer is in a result nobody worded
+        return "Sorry, I found the answer but could not put it into words. Please ask me again."
+    return "Done."
