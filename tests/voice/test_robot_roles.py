@@ -17,6 +17,7 @@ import pytest
 
 import robovoice.sim
 from robovoice.assistant.events import ToolReturned
+from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.robot_tools import ProgressCallback, RobotTools, ToolOutcome
 from robovoice.audio.fakes import ToneSynthesizer
 from robovoice.audio.format import AudioChunk
@@ -27,7 +28,6 @@ from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.manifest.voice import VoiceDecl
 from robovoice.voice.events import RobotStopped, SentenceSpoken, StopHeard, UtteranceIgnored, VoiceTurnFinished
 from robovoice.voice.models import VoiceModels
-from robovoice.voice.motion import PoseMotionProbe
 from robovoice.voice.roles import NO_STOP_WARNING
 
 from .voice_kit import SettableTranscriber, babble, fake_models, voice_session, wake_command

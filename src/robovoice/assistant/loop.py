@@ -29,6 +29,7 @@ from robovoice.assistant.events import (
 from robovoice.assistant.gate import NOT_REQUESTED, refusal
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
+from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
@@ -46,7 +47,7 @@ from robovoice.llm.base import (
     ToolSpec,
 )
 from robovoice.llm.failover import FALLBACK_MESSAGE
-from robovoice.manifest.voice import VoiceDecl
+from robovoice.manifest.voice import VoiceDecl, tools_with_role
 
 log = logging.getLogger(__name__)
 
@@ -340,14 +341,9 @@ class Assistant:
 
     async def _standing_still(self, voice: Mapping[str, VoiceDecl]) -> bool:
         """The robot's pose snapshot (voice role "pose") says it is not moving; False when
-        there is none, it fails or it does not say."""
-        pose = next((name for name, decl in sorted(voice.items()) if decl.role == "pose"), None)
-        if pose is None:
-            return False
-        outcome = await self.tools.call(pose, {})
-        body = outcome.structured if isinstance(outcome.structured, Mapping) else {}
-        value = body.get("value", body)
-        return not outcome.is_error and isinstance(value, Mapping) and value.get("moving") is False
+        there is none, it fails, does not answer in time or does not say."""
+        poses = tools_with_role(voice, "pose")
+        return bool(poses) and await PoseMotionProbe(self.tools, poses[0])() is False
 
     def _remember(self, turn_messages: list[ChatMessage]) -> None:
         """Keep a bounded history that starts at a user message (tool results stay paired).

@@ -130,3 +130,9 @@ class VoiceDecl(_Strict):
     def meta(self) -> dict[str, Any]:
         """The section as it goes into the MCP tool's ``_meta`` (under `META_KEY`)."""
         return self.model_dump(mode="json", exclude_none=True, exclude_defaults=False)
+
+
+def tools_with_role(sections: Mapping[str, VoiceDecl], role: VoiceRole) -> list[str]:
+    """The names of the tools whose voice section declares `role`, sorted (the first is the
+    one used where a robot declares more than one stop or pose tool)."""
+    return sorted(name for name, section in sections.items() if section.role == role)

@@ -13,7 +13,7 @@ import logging
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
-from robovoice.manifest.voice import VoiceDecl, VoicePhrases
+from robovoice.manifest.voice import VoiceDecl, VoicePhrases, tools_with_role
 
 log = logging.getLogger(__name__)
 
@@ -36,13 +36,13 @@ class VoiceRoles:
     def from_tools(cls, sections: Mapping[str, VoiceDecl]) -> VoiceRoles:
         """The roles declared in the tools' voice sections (the first of a role, by name,
         where a robot declares more than one stop or pose tool)."""
-        stops = sorted(name for name, s in sections.items() if s.role == "stop")
-        poses = sorted(name for name, s in sections.items() if s.role == "pose")
+        stops = tools_with_role(sections, "stop")
+        poses = tools_with_role(sections, "pose")
         if len(stops) > 1:
             log.warning("tools %s all declare the voice role 'stop'; a spoken stop calls %s", stops, stops[0])
         return cls(
             stop=stops[0] if stops else None,
-            motion=frozenset(name for name, s in sections.items() if s.role == "motion"),
+            motion=frozenset(tools_with_role(sections, "motion")),
             pose=poses[0] if poses else None,
             phrases={name: s.say for name, s in sections.items()},
         )
