@@ -56,19 +56,21 @@ class Intent:
         return any(c.kind is ClauseKind.REQUEST for c in self.clauses)
 
     @property
+    def _asked(self) -> tuple[Clause, ...]:
+        return tuple(c for c in self.clauses if c.kind in (ClauseKind.REQUEST, ClauseKind.QUESTION))
+
+    @property
     def steps(self) -> tuple[str, ...]:
         """The things asked, in the order they were said: the requests, and the questions
         asked beside them ("tell me where you are and how charged you are")."""
-        wanted = (ClauseKind.REQUEST, ClauseKind.QUESTION)
-        return tuple(c.text for c in self.clauses if c.kind in wanted)
+        return tuple(c.text for c in self._asked)
 
     @property
     def lookups(self) -> tuple[bool, ...]:
         """For each of `steps`: whether it only asks to be told something ("where are you",
         "tell me your battery level"), which a look-up answers and no action may."""
-        wanted = (ClauseKind.REQUEST, ClauseKind.QUESTION)
         return tuple(c.kind is ClauseKind.QUESTION or bool(_TELL_ME.match(_FILLER.sub("", c.text.strip())))
-                     for c in self.clauses if c.kind in wanted)
+                     for c in self._asked)
 
     @property
     def refusal(self) -> ClauseKind | None:

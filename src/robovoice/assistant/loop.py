@@ -34,7 +34,7 @@ from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import claimed_action_in, speakable
-from robovoice.assistant.turn_rules import asked_left, call_key, is_repeat, offered, ran_calls, wordless_reply
+from robovoice.assistant.turn_rules import asked_left, call_key, done, is_repeat, offered, wordless_reply
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
 from robovoice.llm.base import (
@@ -134,13 +134,17 @@ class Assistant:
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
         answer_now = False
         refused = acted = False  # the check before acting refused a call / an actuation reached the robot
+
+        def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
+            due = done(outcomes, worded)
+            return ChatMessage("user", step_hint(asked[due], lookups[due], first=False))
+
         for step in range(max_steps):
             steps = step + 1
             # On the last step the model gets no tools, so the turn ends with words, not a call.
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
-            due = len(ran_calls(outcomes)) + worded
-            lookup = len(asked) > 1 and due < len(asked) and lookups[due]
+            lookup = asked_left(asked, outcomes, worded) and lookups[done(outcomes, worded)]
             specs = offered(specs, lookup)
             try:
                 text, requested = await self._model_step(messages, specs, metrics, emit,
@@ -175,8 +179,7 @@ class Assistant:
                 # the look-up answered in words: the next thing asked is still to do
                 worded += 1
                 if asked_left(asked, outcomes, worded):
-                    due = len(ran_calls(outcomes)) + worded
-                    messages.append(ChatMessage("user", step_hint(asked[due], lookups[due], first=False)))
+                    messages.append(next_step())
                     continue
             if not requested:
                 break
@@ -210,9 +213,8 @@ class Assistant:
                     break
             if more:
                 # a compound request: the small model tends to answer after the first call, so it
-                # is told which of the things the user asked comes next (docs/llm.md)
-                due = len(ran_calls(outcomes)) + worded
-                messages.append(ChatMessage("user", step_hint(asked[due], lookups[due], first=False)))
+                # is told which of the things the user asked comes next
+                messages.append(next_step())
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             read_only = {s.name for s in await self.tools.specs() if s.read_only}
             words_ = wordless_reply(outcomes, read_only)

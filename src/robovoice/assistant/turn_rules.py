@@ -27,10 +27,15 @@ def ran_calls(outcomes: Sequence[ToolReturned]) -> list[ToolReturned]:
     return [o for o in outcomes if o.error != NOT_REQUESTED]
 
 
+def done(outcomes: Sequence[ToolReturned], worded: int = 0) -> int:
+    """How many of the things asked are done: the calls that ran, and the look-ups answered
+    in words alone (`worded`); the next thing asked is `asked[done(...)]`."""
+    return len(ran_calls(outcomes)) + worded
+
+
 def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: int = 0) -> bool:
-    """A compound request with things asked that no call has done yet (nor, for a look-up,
-    `worded` answers in words alone)."""
-    return len(asked) > 1 and len(ran_calls(outcomes)) + worded < len(asked)
+    """A compound request with things asked that are not done yet."""
+    return len(asked) > 1 and done(outcomes, worded) < len(asked)
 
 
 def offered(specs: Sequence[ToolSpec], lookup: bool) -> list[ToolSpec]:

@@ -84,10 +84,11 @@ def result_fields(arguments: Mapping[str, Any] | None, result: Mapping[str, Any]
     plain values (text, numbers, yes/no) of a fresh snapshot's message, then those at the top
     of the structured result (which win). Empty text counts as missing."""
     merged: dict[str, Any] = {}
-    value = (result or {}).get("value")
+    result = result or {}
+    value = result.get("value")
     # a snapshot tool returns its message under "value"; a stale message fills nothing
-    message = value if isinstance(value, Mapping) and (result or {}).get("stale") is False else {}
-    for part in (arguments or {}, message, result or {}):
+    message = value if isinstance(value, Mapping) and result.get("stale") is False else {}
+    for part in (arguments or {}, message, result):
         for key, item in part.items():
             if isinstance(item, (str, int, float, bool)) and item != "":
                 merged[key] = item
