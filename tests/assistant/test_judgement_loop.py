@@ -3,6 +3,8 @@ behind a real HTTP server, the embedded sim behind the real MCP server."""
 
 from __future__ import annotations
 
+import pytest
+
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.gate import NOT_REQUESTED
 from robovoice.assistant.loop import Assistant
@@ -35,28 +37,23 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
     assert tool_message["role"] == "tool" and "not to do this now" in tool_message["content"]
 
 
-async def test_after_a_refusal_the_model_never_claims_the_refused_action_done() -> None:
+@pytest.mark.parametrize(("worded", "said"), [
+    ("The projector is now on. Anything else?", "Anything else?"),
+    ("Done, the projector has been switched on.", "Yes, I can do that when you ask me to."),  # the refusal's line
+])
+async def test_after_a_refusal_the_model_never_claims_the_refused_action_done(worded: str, said: str) -> None:
     """A small model words the refused call as done ("The projector is now on."): a false claim
     the person would believe. It is not said; what is true is."""
     async with connect_robot(SIM) as robot, FakeOpenAIServer(
-        [call("set_projector_power", on=True), TextReply("The projector is now on. Anything else?")]
+        [call("set_projector_power", on=True), TextReply(worded)]
     ) as server:
         backend = OpenAICompatBackend(server.base_url, server.model)
         try:
             result = await Assistant(backend, robot.tools).turn("Are you able to switch on a projector?")
             assert robot.sim is not None and not robot.sim.state.projector_on
-            assert result.reply == "Anything else?"
         finally:
             await backend.aclose()
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
-        [call("set_projector_power", on=True), TextReply("Done, the projector has been switched on.")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            result = await Assistant(backend, robot.tools).turn("Are you able to switch on a projector?")
-        finally:
-            await backend.aclose()
-    assert result.reply == "Yes, I can do that when you ask me to."  # the refusal's own line
+    assert result.reply == said
 
 
 async def test_a_look_up_beside_an_action_is_offered_only_look_ups_then_the_action_follows() -> None:
