@@ -20,7 +20,9 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "I'd like to speak to my son.",
     "You may hang up now.",
     "Stop!",
-    "Never mind, I don't want to go there after all.",
+    "Why don't you come through to the sofa?",  # a suggestion, whatever its "don't"
+    "Don't touch the lamp, but do come here.",
+    "Could you make a video call to Ben?",  # names whom: not an ability question
     "Wait for me in the bedroom.",
     "Projector off.",
     "Go to the kitchen with me.",
@@ -44,6 +46,11 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Just leave the projector be, thanks.", ClauseKind.NEGATED),
     ("Can you drive over to?", ClauseKind.UNFINISHED),  # cut off: the model would pick a place
     ("Please switch the...", ClauseKind.UNFINISHED),
+    # calling off asks for nothing new (the loop lets a cancel run while the robot moves)
+    ("Never mind, I don't want to go there after all.", ClauseKind.NEGATED),
+    ("Never mind about ringing Clara, I'll see her later.", ClauseKind.NEGATED),
+    ("Can you send letters, or only pictures?", ClauseKind.ABILITY),  # kinds of thing
+    ("Leave the call running.", ClauseKind.NEGATED),
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)
@@ -58,6 +65,22 @@ def test_compound_requests_keep_their_order_and_verbless_continuations() -> None
     assert read_request("Call Dr. Weber, please.").steps == ("Call Dr. Weber",)
     both = read_request("Where are you and how charged are you?")
     assert not both.asks_action and both.steps == ("Where are you", "how charged are you")
+
+
+def test_go_and_tags_and_elided_continuations_make_no_extra_steps() -> None:
+    assert read_request("Go and get your battery charged, dear.").steps == ("Go get your battery charged",)
+    assert read_request("Come and sit in the hallway, would you?").steps == ("Come sit in the hallway",)
+    assert read_request("Drive to the hall, then on to the bedroom afterwards.").steps == (
+        "Drive to the hall", "on to the bedroom afterwards")
+
+
+def test_a_tool_named_for_what_was_declined_is_refused() -> None:
+    projector = ToolSpec("set_projector_power", "projector")
+    declined = read_request("Leave the projector alone, but come here.")
+    body = refusal(declined, projector, {"on": False})  # a yes/no argument names nothing
+    assert body is not None and body["details"]["reason"] == "negated"
+    assert refusal(declined, NAV, {"target": "hallway"}) is None
+    assert refusal(read_request("Don't turn the projector off, turn it on."), projector, {"on": True}) is None
 
 
 def test_an_answer_to_the_robots_question_is_a_request() -> None:

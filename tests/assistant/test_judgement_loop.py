@@ -118,3 +118,27 @@ async def test_a_stop_is_refused_only_where_the_robot_stands_still() -> None:
         finally:
             await backend.aclose()
     assert [o.error for o in standing.outcomes] == [NOT_REQUESTED]
+
+
+async def test_never_mind_cancels_a_drive_under_way_and_nothing_when_none_is() -> None:
+    """"Never mind" asks for nothing new: during a drive the robot's cancel tool (voice role
+    "cancel") still runs; with the robot standing still it is refused, and so is any other
+    action the model reads into it (a small model switched the projector off)."""
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("cancel_navigation"), call("cancel_navigation"), TextReply("All right."),
+         call("set_projector_power", on=False), TextReply("All right.")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            assert robot.sim is not None
+            await robot.sim.apply_setup("driving+projector_on")
+            driving = await Assistant(backend, robot.tools).turn("Oh, never mind, forget it.")
+            assert not robot.sim.state.moving
+            standing = await Assistant(backend, robot.tools).turn("Never mind about that.")
+            projector = await Assistant(backend, robot.tools).turn("Never mind, not tonight.")
+            assert robot.sim.state.projector_on
+        finally:
+            await backend.aclose()
+    assert [o.error for o in driving.outcomes] == [None]
+    assert [o.error for o in standing.outcomes] == [NOT_REQUESTED]
+    assert [o.error for o in projector.outcomes] == [NOT_REQUESTED]

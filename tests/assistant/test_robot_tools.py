@@ -30,7 +30,8 @@ async def test_voice_sections_reach_the_client_in_the_tools_meta() -> None:
     assert meta["get_battery_state"] == {"say": {"success": battery}}
     assert meta["list_contacts"] is None
     assert {name: v.role for name, v in voice.items() if v.role} == {
-        "navigate_to": "motion", "return_to_dock": "motion", "stop_robot": "stop", "get_robot_pose": "pose"}
+        "navigate_to": "motion", "return_to_dock": "motion", "stop_robot": "stop", "get_robot_pose": "pose",
+        "cancel_navigation": "cancel"}
 
 
 def test_a_malformed_voice_section_is_ignored_with_a_warning(caplog: pytest.LogCaptureFixture) -> None:

@@ -18,6 +18,7 @@ Audio given to an audio-capable model has no words to read: nothing is refused t
 from __future__ import annotations
 
 import logging
+import re
 from collections.abc import Collection, Mapping
 from typing import Any
 
@@ -73,6 +74,21 @@ def model_only_texts() -> tuple[str, ...]:
     return tuple(_HINTS.values())
 
 
+# Words of a tool's name that say nothing about what it acts on.
+_GENERIC_NAME_WORDS = frozenset({"set", "get", "start", "end", "to", "power", "state", "robot", "the", "on", "off"})
+_BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)
+
+
+def _names_only_what_was_declined(name: str, intent: Intent) -> bool:
+    """The tool's own name names a thing the user declined and no request mentions ("leave
+    the projector alone" → set_projector_power), which its arguments (a yes/no) cannot show.
+    A request that refers back ("don't switch it off, switch it on") may mean the same thing."""
+    if any(c.kind is ClauseKind.REQUEST and _BACK_REFERENCE.search(c.text) for c in intent.clauses):
+        return False
+    subject = set(words(name.replace("_", " "))) - _GENERIC_NAME_WORDS
+    return bool(subject & intent.negated_words())
+
+
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
 ) -> dict[str, Any] | None:
@@ -87,6 +103,8 @@ def refusal(
         named = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
         if named and set(named) <= intent.negated_words():
             why = ClauseKind.NEGATED.value
+        elif _names_only_what_was_declined(name, intent):
+            why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
         elif named and intent.refers and not set(named) <= (set(said) | set(intent.words())):
             why = UNCLEAR  # "call her": nobody in the conversation is her
         else:

@@ -97,7 +97,7 @@ class Intent:
         return negated - asked
 
 
-_TELL_ME = re.compile(r"(?:please\s+)?(?:tell|let)\s+me\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
+_TELL_ME = re.compile(r"(?:please\s+)?(?:(?:tell|let)\s+me|(?:try )?find out)\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person)\b", re.IGNORECASE)
 
 
@@ -116,8 +116,13 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
 
 
+# "go and charge", "come and find me": one request whose verb follows the "and", not two
+_GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
+
+
 def split_clauses(text: str) -> list[str]:
-    parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text.strip())]
+    text = _GO_AND.sub(r"\1 ", text.strip())
+    parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)]
     return [p for p in parts if p]
 
 
@@ -131,7 +136,8 @@ _FILLER = re.compile(
 _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
-    r"hold off|rather not|rather you didn'?t|no,|leave (?:\w+ ){1,3}(?:alone|be)|let (?:it|that|them) be)\b"
+    r"hold off|rather not|rather you didn'?t|no,|leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going)|"
+    r"let (?:it|that|them) be|don'?t touch)\b"
     r"|\bnot\s*$",
     re.IGNORECASE,
 )
@@ -155,6 +161,21 @@ _CAN_GENERIC = re.compile(
     r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|video calls|calls|projectors)\b",
     re.IGNORECASE,
 )
+# … unless it names whom or where: "could you make a video call to Ben?" asks for one now.
+_NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)")
+# … or a bare plural with no article or owner before it ("can you send text messages?",
+# "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
+_CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IGNORECASE)
+_NOT_GENERIC = frozenset({
+    "the", "my", "your", "his", "her", "their", "our", "this", "that", "these", "those", "to", "into", "in", "on",
+    "at", "for", "us", "is", "was", "has", "does", "yes", "please", "thanks", "as", "its", "it's", "hers",
+    "yours", "ours", "theirs", "anywhere", "always", "sometimes",
+})
+
+
+def _asks_about_kinds(text: str) -> bool:
+    match = _CAN_PLURAL.match(text.rstrip(" ?.!"))
+    return match is not None and not set(words(match.group(0))[3:]) & _NOT_GENERIC
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
@@ -167,7 +188,7 @@ _IMPERATIVE = frozenset({
     "tell", "show", "check", "look", "list", "read", "cancel", "return", "park", "wait", "stay", "halt",
     "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
     "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
-    "join", "photograph", "snap", "capture", "shut",
+    "join", "photograph", "snap", "capture", "shut", "try",
 })
 _WH = frozenset({
     "what", "where", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do", "does",
@@ -175,7 +196,12 @@ _WH = frozenset({
 })
 
 
-_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about it)|call it off|stop)\b", re.IGNORECASE)
+# Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
+# moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
+_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b", re.IGNORECASE)
+_STOP = re.compile(r"\bstop\b", re.IGNORECASE)
+# A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
+_SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
@@ -203,15 +229,21 @@ def classify(clause: str) -> ClauseKind:
     lowered = text.lower()
     if not text:
         return ClauseKind.STATEMENT
-    if _CALL_OFF.search(lowered) and not re.search(r"\b(?:don'?t|do not|never) stop\b", lowered):
-        return ClauseKind.REQUEST  # calling something off (a stop, a drive not wanted after all)
-    if _NEGATION.search(lowered) or _LATER.search(lowered) or re.match(r"^no\b", lowered):
+    if _STOP.search(lowered) and not re.search(r"\b(?:don'?t|do not|never) stop\b", lowered):
+        return ClauseKind.REQUEST  # a stop is always a request
+    if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
+        return ClauseKind.REQUEST
+    if (_CALL_OFF.search(lowered) or _NEGATION.search(lowered) or _LATER.search(lowered)
+            or re.match(r"^no\b", lowered)):
         return ClauseKind.NEGATED
-    if _ABILITY.search(lowered) or _CAN_GENERIC.search(lowered):
+    if _ABILITY.search(lowered) or (_CAN_GENERIC.search(lowered) and not _NAMED.search(text)) \
+            or _asks_about_kinds(lowered):
         return ClauseKind.ABILITY
     if _POLITE.search(lowered):
         return ClauseKind.REQUEST
     first = words(lowered)[0]
+    if first == "do" and len(words(lowered)) > 1 and words(lowered)[1] in _IMPERATIVE:
+        return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
     if first in _IMPERATIVE:
@@ -231,6 +263,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     is the request that question offered."""
     clauses: list[Clause] = []
     for part in split_clauses(text):
+        if _TAG.match(part.strip()):
+            continue  # "…, would you?", "…, dear": part of the clause before it
         kind = classify(part)
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
@@ -242,7 +276,13 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     return Intent(tuple(clauses))
 
 
+_TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
+                  r"dear|love|pet|darling|my dear)$", re.IGNORECASE)
+
+
 def _fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben"."""
     text = _FILLER.sub("", part.strip()).strip().lower()
-    return bool(re.match(r"^(?:back )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))
+    text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
+    return bool(re.match(r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?"
+                         r"\w+(?: \w+)?$", text))

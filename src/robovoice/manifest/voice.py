@@ -35,7 +35,7 @@ META_KEY = "robovoice/voice"
 _FIELD = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 _FORMATTER = string.Formatter()
 
-VoiceRole = Literal["stop", "motion", "pose"]
+VoiceRole = Literal["stop", "cancel", "motion", "pose"]
 
 
 def template_fields(template: str) -> list[str]:
@@ -123,9 +123,11 @@ class VoicePhrases(_Strict):
 class VoiceDecl(_Strict):
     """A tool's (or snapshot's) part in the voice pipeline."""
 
-    role: VoiceRole | None = Field(default=None, description="stop: a spoken stop calls it directly; motion: "
-                                   "the robot moves while it runs; pose (snapshots): its value says "
-                                   "whether the robot moves (\"moving\": true|false)")
+    role: VoiceRole | None = Field(default=None, description="stop: a spoken stop calls it directly; cancel: "
+                                   "it calls off what the robot is doing, and may run on \"never mind\" "
+                                   "while the robot moves; motion: the robot moves while it runs; pose "
+                                   "(snapshots): its value says whether the robot moves (\"moving\": "
+                                   "true|false)")
     say: VoicePhrases = Field(default_factory=VoicePhrases, description="phrases spoken about the tool")
 
     def meta(self) -> dict[str, Any]:
