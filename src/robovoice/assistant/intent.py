@@ -97,7 +97,8 @@ class Intent:
         return negated - asked
 
 
-_TELL_ME = re.compile(r"(?:please\s+)?(?:(?:tell|let)\s+me|(?:try )?find out)\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
+_TELL_ME = re.compile(
+    r"(?:please\s+)?(?:(?:tell|let)\s+me|(?:try )?find out)\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person)\b", re.IGNORECASE)
 
 
@@ -136,8 +137,8 @@ _FILLER = re.compile(
 _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
-    r"hold off|rather not|rather you didn'?t|no,|leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going)|"
-    r"let (?:it|that|them) be|don'?t touch)\b"
+    r"hold off|rather not|rather you didn'?t|no,|"
+    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going)|let (?:it|that|them) be|don'?t touch)\b"
     r"|\bnot\s*$",
     re.IGNORECASE,
 )
