@@ -131,7 +131,7 @@ def split_clauses(text: str) -> list[str]:
 
 _FILLER = re.compile(
     r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first|firstly|next|finally|just|"
-    r"hey|hi|robot|jarvis|and|then|yes|yeah)\b[\s,]*)+",
+    r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
     re.IGNORECASE,
 )
 _NEGATION = re.compile(
@@ -180,7 +180,11 @@ def _asks_about_kinds(text: str) -> bool:
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
-    r"^i(?:'d| would) like (?:you|to)\b|^i (?:want|need|wish)\b|^i'd love\b|^i(?:'d| would) love\b",
+    r"^i(?:'d| would) like (?:you|to)\b|^i (?:want|need|wish)\b|^i'd love\b|^i(?:'d| would) love\b|"
+    # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
+    r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
+    r"^i(?:'m| am| was)? wonder(?:ing)? if you\b|^do you think you could\b|^if you (?:could|would)\b|"
+    r"^i(?:'d| would) (?:be grateful|appreciate it) if you\b",
     re.IGNORECASE,
 )
 _IMPERATIVE = frozenset({
@@ -263,20 +267,50 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     question the robot just asked ("Which room?"), so a plain statement ("The bedroom.")
     is the request that question offered."""
     clauses: list[Clause] = []
+    condition = corrected = False  # after "if Ben rings, …" / after "…, no, …"
     for part in split_clauses(text):
         if _TAG.match(part.strip()):
             continue  # "…, would you?", "…, dear": part of the clause before it
+        bare = _FILLER.sub("", part.strip()).strip()
         kind = classify(part)
+        if _SEQUENCE.match(bare):
+            kind = ClauseKind.REQUEST  # "once you've checked your battery, …": that first
+        elif _CONDITION.match(bare):
+            # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
+            condition = condition or not _COURTESY.match(bare)
+            clauses.append(Clause(part, ClauseKind.STATEMENT))
+            continue
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
-        if kind is ClauseKind.STATEMENT and clauses and clauses[-1].kind is ClauseKind.REQUEST and _fragment(part):
-            kind = ClauseKind.REQUEST
+        previous = next((c for c in reversed(clauses) if _FILLER.sub("", c.text).strip()), None)
+        if kind is ClauseKind.STATEMENT and _fragment(part) and (
+                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)):
+            kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
+        if kind is ClauseKind.REQUEST and condition:
+            kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
+        corrected = corrected and not bare
+        if kind is ClauseKind.NEGATED and _WITHDRAWAL.match(bare):
+            # "switch the projector on… actually, no, don't": the requests said before are withdrawn
+            corrected = any(c.kind is ClauseKind.REQUEST for c in clauses)
+            clauses = [Clause(c.text, ClauseKind.NEGATED) if c.kind is ClauseKind.REQUEST else c for c in clauses]
         clauses.append(Clause(part, kind))
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
     return Intent(tuple(clauses))
 
 
+# A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
+_WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
+                         r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?)\b[\s,]*)+$", re.IGNORECASE)
+# A condition before a request: what to do if or when something happens, not now.
+_CONDITION = re.compile(r"^(?:if|when|whenever|in case|should)\b", re.IGNORECASE)
+# … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
+_COURTESY = re.compile(
+    r"^(?:if|when) (?:you(?:'re| are) ready|you (?:don'?t|do not|wouldn'?t) mind|you (?:can|could|would|please)\b|"
+    r"you (?:get|have) (?:a|the) (?:moment|minute|second|sec|chance)|it'?s (?:no|not too much) trouble|"
+    r"it'?s (?:ok|okay|alright|all right))", re.IGNORECASE)
+# … these say what to do first ("once you've checked your battery, come here").
+_SEQUENCE = re.compile(r"^(?:once|after|when) you(?:'ve| have) \w+", re.IGNORECASE)
 _TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
                   r"dear|love|pet|darling|my dear)$", re.IGNORECASE)
 
