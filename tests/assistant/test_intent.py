@@ -74,6 +74,32 @@ def test_go_and_tags_and_elided_continuations_make_no_extra_steps() -> None:
         "Drive to the hall", "on to the bedroom afterwards")
 
 
+def test_a_bare_no_takes_back_what_was_asked_and_a_place_after_it_corrects_it() -> None:
+    taken_back = read_request("Turn the projector off. Actually, no, don't bother.")
+    assert not taken_back.asks_action and taken_back.refusal is ClauseKind.NEGATED
+    corrected = read_request("Drive to the kitchen... no, sorry, the bedroom.")
+    assert corrected.steps == ("the bedroom",)
+    refused = refusal(corrected, NAV, {"target": "kitchen"})
+    assert refused is not None and refused["details"]["reason"] == "negated"
+    assert refusal(corrected, NAV, {"target": "bedroom"}) is None
+    assert read_request("No, go to the kitchen.").steps == ("go to the kitchen",)  # nothing before to take back
+
+
+@pytest.mark.parametrize(("text", "steps", "why"), [
+    ("If the doorbell goes, would you go to the front door?", (), ClauseKind.ABILITY),  # what it would do then
+    ("When Anna calls, switch the projector on.", (), ClauseKind.ABILITY),
+    ("If you don't mind, come to the hallway.", ("come to the hallway",), None),  # courtesy
+    ("When you're ready, call Ben.", ("call Ben",), None),
+    ("Once you've checked your battery, drive to the bedroom.",
+     ("Once you've checked your battery", "drive to the bedroom"), None),  # that first
+    ("It'd be lovely if you could call Clara.", ("It'd be lovely if you could call Clara",), None),  # a wish
+    ("I was wondering if you could come to the hallway.", ("I was wondering if you could come to the hallway",), None),
+])
+def test_conditions_courtesy_and_wishes(text: str, steps: tuple[str, ...], why: ClauseKind | None) -> None:
+    intent = read_request(text)
+    assert intent.steps == steps and intent.refusal is why, intent
+
+
 def test_a_tool_named_for_what_was_declined_is_refused() -> None:
     projector = ToolSpec("set_projector_power", "projector")
     declined = read_request("Leave the projector alone, but come here.")
