@@ -142,3 +142,19 @@ async def test_never_mind_cancels_a_drive_under_way_and_nothing_when_none_is() -
     assert [o.error for o in driving.outcomes] == [None]
     assert [o.error for o in standing.outcomes] == [NOT_REQUESTED]
     assert [o.error for o in projector.outcomes] == [NOT_REQUESTED]
+
+
+async def test_a_tool_errors_hint_read_out_is_not_said() -> None:
+    """The robot's error hints are for the model ("tell the user you do not know that place,
+    name the known places and ask which one they mean"); a small model read one out."""
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("navigate_to", target="garage"),
+         TextReply("I do not know that place. Name the known places and ask which one they mean.")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("Go to the garage.")
+        finally:
+            await backend.aclose()
+    assert [o.error for o in result.outcomes] == ["unknown_target"]
+    assert result.reply == "I do not know that place."

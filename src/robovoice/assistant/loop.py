@@ -33,7 +33,7 @@ from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
-from robovoice.assistant.speech_guard import claimed_action_in, speakable
+from robovoice.assistant.speech_guard import MODEL_ONLY, ModelOnlyText, claimed_action_in, speakable
 from robovoice.assistant.turn_rules import asked_left, call_key, done, is_repeat, offered, wordless_reply
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
@@ -133,6 +133,7 @@ class Assistant:
         steps = 0
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
         answer_now = False
+        model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
         refused = acted = False  # the check before acting refused a call / an actuation reached the robot
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
@@ -147,7 +148,7 @@ class Assistant:
             lookup = asked_left(asked, outcomes, worded) and lookups[done(outcomes, worded)]
             specs = offered(specs, lookup)
             try:
-                text, requested = await self._model_step(messages, specs, metrics, emit,
+                text, requested = await self._model_step(messages, specs, metrics, emit, model_only,
                                                          no_action=refused and not acted)
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
@@ -197,6 +198,10 @@ class Assistant:
                     acted = acted or returned.error != NOT_REQUESTED
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
+            for _, r in ran:  # a tool error's hint is for the model: never read out
+                hint = r.result.get("hint") if r.is_error and r.result is not None else None
+                if isinstance(hint, str):
+                    model_only.add(hint)
             more = asked_left(asked, outcomes, worded) and step < max_steps - 2
             # the tool's own phrase answers this step when it fills and nothing was asked it
             # does not answer: no model step just to word it (assistant/phrase.py)
@@ -249,7 +254,7 @@ class Assistant:
 
     async def _model_step(
         self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit,
-        *, no_action: bool = False,
+        model_only: ModelOnlyText, *, no_action: bool = False,
     ) -> tuple[str, list[ToolCallRequested]]:
         """One model step, its sentences said as they come. `no_action`: a call was refused and no
         action has run this turn, so a sentence claiming one was done is false and not said."""
@@ -270,7 +275,7 @@ class Assistant:
             match event:
                 case TextDelta(delta):
                     for sentence in splitter.feed(delta):
-                        await self._say_speakable(sentence, text, metrics, emit, no_action)
+                        await self._say_speakable(sentence, text, metrics, emit, model_only, no_action)
                 case ToolCallRequested():
                     requested.append(event)
                 case Finished():
@@ -279,7 +284,7 @@ class Assistant:
         metrics.model_ms += waited * 1000.0
         rest = splitter.flush()
         if rest:
-            await self._say_speakable(rest, text, metrics, emit, no_action)
+            await self._say_speakable(rest, text, metrics, emit, model_only, no_action)
         for i, request in enumerate(requested):
             if not request.id:  # some servers omit ids; the history needs them to pair results
                 requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
@@ -287,13 +292,14 @@ class Assistant:
         return " ".join(text).strip(), requested
 
     async def _say_speakable(
-        self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, no_action: bool = False
+        self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, model_only: ModelOnlyText,
+        no_action: bool = False,
     ) -> None:
         """Say a sentence of the model's and keep it in `said`, unless it reads out words meant
         for the model only or tool-call syntax (`speech_guard`), or claims an action done when
         none was (`no_action`): then it is neither said nor kept, and a turn left with nothing
         said ends with `wordless_reply`, not in silence."""
-        spoken = speakable(sentence)
+        spoken = speakable(sentence, model_only)
         if spoken is None:
             log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)
             return

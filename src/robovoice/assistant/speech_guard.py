@@ -83,6 +83,12 @@ class ModelOnlyText:
         for text in texts:
             self.add(text)
 
+    def copy(self) -> ModelOnlyText:
+        """A copy to add one turn's texts to (its tool errors' hints)."""
+        other = ModelOnlyText()
+        other._runs = set(self._runs)
+        return other
+
     def add(self, text: str) -> None:
         """Remember `text` as model-only (every run of 3 to `COPIED_RUN_WORDS` of its words)."""
         words = _words(text)
