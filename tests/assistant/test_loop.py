@@ -52,7 +52,7 @@ async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
     async with connect_robot(SIM) as robot:
         script: list[ScriptedReply] = [
             ToolCallReply((ScriptedCall("navigate_to", {"target": "kitchen"}),), arg_chunk_chars=3),
-            TextReply("I'm in the kitchen now. Dr. Weber's number is 3.5 metres away, just kidding! Anything else?"),
+            TextReply("I'm in the kitchen now. Dr. Weber's number is 3.5, just kidding! Anything else?"),
         ]
         events: list[TurnEvent] = []
         async with FakeOpenAIServer(script) as server:
@@ -64,7 +64,7 @@ async def test_tool_loop_drives_the_robot_and_streams_sentences() -> None:
         assert robot.sim is not None and robot.sim.state.nearest_place == "kitchen"
         assert not result.outcomes[0].is_error and json.loads(result.outcomes[0].text)["arrived"] == "kitchen"
         sentences = [e.text for e in events if isinstance(e, SentenceReady)]
-        assert sentences == ["I'm in the kitchen now.", "Dr. Weber's number is 3.5 metres away, just kidding!",
+        assert sentences == ["I'm in the kitchen now.", "Dr. Weber's number is 3.5, just kidding!",
                              "Anything else?"]
         # The model got every sim tool, and the tool result went back paired with its call id.
         assert "navigate_to" in requests[0].tool_names and len(requests[0].tool_names) == 12
@@ -135,7 +135,9 @@ async def test_a_repeated_look_up_is_not_run_again_and_the_model_answers_at_once
         def reply(request: RecordedRequest) -> ToolCallReply | TextReply:
             if request.tool_names:
                 return ToolCallReply((ScriptedCall("get_battery_state", {}),))
-            return TextReply("My battery is at 100 percent.")
+            result = next(m for m in reversed(request.messages) if m["role"] == "tool")  # the look-up's
+            percent = json.loads(result["content"])["value"]["percent"]
+            return TextReply(f"My battery is at {percent:.0f} percent.")
 
         from robovoice.llm.fake_server import CallbackReply
 
@@ -144,7 +146,7 @@ async def test_a_repeated_look_up_is_not_run_again_and_the_model_answers_at_once
             requests = list(server.requests)
         assert [bool(r.tool_names) for r in requests] == [True, True, False]
         assert [c.name for c in result.calls] == ["get_battery_state"]
-        assert result.reply == "My battery is at 100 percent."
+        assert result.reply.startswith("My battery is at ") and result.reply.endswith(" percent.")
 
 
 async def test_a_call_written_as_text_on_the_no_tools_step_is_not_run_and_the_turn_ends_with_words() -> None:

@@ -14,7 +14,14 @@ from robovoice.assistant.events import SentenceReady, ToolReturned, TurnEvent
 from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts, refusal_reasons
 from robovoice.assistant.loop import Assistant
 from robovoice.assistant.prompt import SYSTEM_PROMPT
-from robovoice.assistant.speech_guard import ModelOnlyText, claimed_action_in, speakable, unspeakable_in
+from robovoice.assistant.speech_guard import (
+    ModelOnlyText,
+    claimed_action_in,
+    figures_in,
+    invented_figure_in,
+    speakable,
+    unspeakable_in,
+)
 from robovoice.assistant.turn_rules import wordless_reply
 from robovoice.config import RobotConfig
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
@@ -143,3 +150,27 @@ def test_a_sentence_claiming_an_action_is_recognised(sentence: str) -> None:
 ])
 def test_a_sentence_that_claims_nothing_or_denies_is_not(sentence: str) -> None:
     assert claimed_action_in(sentence) is None
+
+
+@pytest.mark.parametrize(("sentence", "invented"), [
+    ("The robot's battery is at 80% and it is charging.", "80%"),  # no look-up was made
+    ("It is 5.3 meters away and will take 10.6 seconds.", "5.3 meters"),
+    ("My battery is at 83 percent.", None),  # 83.33 rounded
+    ("I am facing 90 degrees.", None),  # 1.5708 rad
+    ("Two plus two is 4, and I have 3 friends.", None),  # not a measured figure
+])
+def test_a_measured_figure_must_come_from_the_conversation(sentence: str, invented: str | None) -> None:
+    known = figures_in(['{"percent": 83.33, "charging": true}', '{"theta": 1.5708}'])
+    assert invented_figure_in(sentence, known) == invented
+
+
+async def test_a_battery_level_the_model_never_looked_up_is_not_said() -> None:
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [TextReply("Your battery is at 80 percent. Anything else?")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("How much battery have you got?")
+        finally:
+            await backend.aclose()
+    assert result.reply == "Anything else?"

@@ -11,7 +11,7 @@ from __future__ import annotations
 import json
 import logging
 import time
-from collections.abc import Awaitable, Callable, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 
 from robovoice.assistant.events import (
@@ -33,7 +33,14 @@ from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import phrase_answer
 from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
-from robovoice.assistant.speech_guard import MODEL_ONLY, ModelOnlyText, claimed_action_in, speakable
+from robovoice.assistant.speech_guard import (
+    MODEL_ONLY,
+    ModelOnlyText,
+    claimed_action_in,
+    figures_in,
+    invented_figure_in,
+    speakable,
+)
 from robovoice.assistant.turn_rules import asked_left, call_key, done, is_repeat, offered, wordless_reply
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
@@ -259,6 +266,7 @@ class Assistant:
         """One model step, its sentences said as they come. `no_action`: a call was refused and no
         action has run this turn, so a sentence claiming one was done is false and not said."""
         splitter = SentenceSplitter()
+        known = figures_in(m.text for m in messages)  # what a figure the model says may come from
         text: list[str] = []
         requested: list[ToolCallRequested] = []
         started = time.perf_counter()
@@ -275,7 +283,7 @@ class Assistant:
             match event:
                 case TextDelta(delta):
                     for sentence in splitter.feed(delta):
-                        await self._say_speakable(sentence, text, metrics, emit, model_only, no_action)
+                        await self._say_speakable(sentence, text, metrics, emit, model_only, known, no_action)
                 case ToolCallRequested():
                     requested.append(event)
                 case Finished():
@@ -284,7 +292,7 @@ class Assistant:
         metrics.model_ms += waited * 1000.0
         rest = splitter.flush()
         if rest:
-            await self._say_speakable(rest, text, metrics, emit, model_only, no_action)
+            await self._say_speakable(rest, text, metrics, emit, model_only, known, no_action)
         for i, request in enumerate(requested):
             if not request.id:  # some servers omit ids; the history needs them to pair results
                 requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
@@ -293,15 +301,20 @@ class Assistant:
 
     async def _say_speakable(
         self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, model_only: ModelOnlyText,
-        no_action: bool = False,
+        known: Collection[float], no_action: bool = False,
     ) -> None:
         """Say a sentence of the model's and keep it in `said`, unless it reads out words meant
-        for the model only or tool-call syntax (`speech_guard`), or claims an action done when
-        none was (`no_action`): then it is neither said nor kept, and a turn left with nothing
+        for the model only or tool-call syntax (`speech_guard`), gives a measured figure found
+        nowhere in the conversation (`known`), or claims an action done when none was
+        (`no_action`): then it is neither said nor kept, and a turn left with nothing
         said ends with `wordless_reply`, not in silence."""
         spoken = speakable(sentence, model_only)
         if spoken is None:
             log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)
+            return
+        figure = invented_figure_in(spoken, known)
+        if figure is not None:
+            log.warning("not saying %r: %r is a figure nobody gave the model", sentence, figure)
             return
         claim = claimed_action_in(spoken) if no_action else None
         if claim is not None:

@@ -11,8 +11,9 @@ the chat printer) log what they drop.
 from __future__ import annotations
 
 import itertools
+import math
 import re
-from collections.abc import Iterable
+from collections.abc import Collection, Iterable
 
 from robovoice.assistant.gate import model_only_texts
 from robovoice.assistant.prompt import STEP_HINTS, SYSTEM_PROMPT
@@ -146,3 +147,34 @@ def claimed_action_in(sentence: str) -> str | None:
         return None
     found = _CLAIM.search(text)
     return found.group(0).strip() if found is not None else None
+
+
+# --- a figure nobody gave the model --------------------------------------------------------------
+
+# A small model answers "how much battery?" from its head ("The battery is at 80%") when it skips
+# the look-up, or works out distances and times it was never told. A measured figure (a percentage,
+# a distance, a time, an angle) in a sentence must come from the conversation the model was given
+# (the tool results, the person's words); one that does not is invented, and the sentence is not said.
+_NUMBER = re.compile(r"\d+(?:\.\d+)?")
+_FIGURE = re.compile(
+    r"(\d+(?:\.\d+)?)\s*(?:%|percent\b|per cent\b|met(?:er|re)s?\b|m\b|cm\b|seconds?\b|secs?\b|minutes?\b"
+    r"|mins?\b|hours?\b|degrees?\b|km/h\b|m/s\b|volts?\b)",
+    re.IGNORECASE,
+)
+_SAME = 0.5  # rounding: "83%" for 83.33, "84 percent" for 83.5
+
+
+def figures_in(texts: Iterable[str]) -> frozenset[float]:
+    """Every number in `texts` (the conversation the model was given)."""
+    return frozenset(float(n) for text in texts for n in _NUMBER.findall(text))
+
+
+def invented_figure_in(sentence: str, known: Collection[float]) -> str | None:
+    """The first measured figure in `sentence` that no number in `known` gives (as it is, as a
+    percentage of a fraction, or in degrees of an angle in radians), or None."""
+    for found in _FIGURE.finditer(sentence):
+        value = float(found.group(1))
+        if not any(abs(value - k) <= _SAME or abs(value - 100 * k) <= _SAME or abs(value - math.degrees(k)) <= _SAME
+                   for k in known):
+            return found.group(0)
+    return None
