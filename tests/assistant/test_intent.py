@@ -88,6 +88,7 @@ def test_a_bare_no_takes_back_what_was_asked_and_a_place_after_it_corrects_it() 
 @pytest.mark.parametrize(("text", "steps", "why"), [
     ("If the doorbell goes, would you go to the front door?", (), ClauseKind.ABILITY),  # what it would do then
     ("When Anna calls, switch the projector on.", (), ClauseKind.ABILITY),
+    ("When will you be charged?", ("When will you be charged",), ClauseKind.QUESTION),  # a question, not a condition
     ("If you don't mind, come to the hallway.", ("come to the hallway",), None),  # courtesy
     ("When you're ready, call Ben.", ("call Ben",), None),
     ("Once you've checked your battery, drive to the bedroom.",

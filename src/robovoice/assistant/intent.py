@@ -303,7 +303,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 _WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
                          r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?)\b[\s,]*)+$", re.IGNORECASE)
 # A condition before a request: what to do if or when something happens, not now.
-_CONDITION = re.compile(r"^(?:if|when|whenever|in case|should)\b", re.IGNORECASE)
+_CONDITION = re.compile(  # (not a question: "when will you be charged?")
+    r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case)\b",
+    re.IGNORECASE)
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 _COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) ready|you (?:don'?t|do not|wouldn'?t) mind|you (?:can|could|would|please)\b|"
