@@ -30,7 +30,7 @@ from robovoice.assistant.gate import NOT_REQUESTED, refusal
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.motion_probe import PoseMotionProbe
-from robovoice.assistant.phrase import phrase_answer
+from robovoice.assistant.phrase import found_phrase, phrase_answer
 from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import (
@@ -229,7 +229,7 @@ class Assistant:
                 messages.append(next_step())
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             read_only = {s.name for s in await self.tools.specs() if s.read_only}
-            words_ = wordless_reply(outcomes, read_only)
+            words_ = found_phrase(self.tools.voice(), calls, outcomes, read_only) or wordless_reply(outcomes, read_only)
             log.info("the model ended the turn without words; said %r", words_)
             await self._say(words_, metrics, emit)
             replies.append(words_)

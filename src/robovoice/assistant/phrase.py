@@ -65,3 +65,20 @@ def phrase_answer(
     if any(p is None for p in phrases):
         return None
     return " ".join(p for p in phrases if p is not None)
+
+
+def found_phrase(
+    voice: Mapping[str, VoiceDecl], calls: Sequence[ToolCalled], outcomes: Sequence[ToolReturned],
+    read_only: Collection[str],
+) -> str | None:
+    """What the turn's look-ups found, in their own phrases, for a turn the model left without
+    words it may say (none, or only words the speech guard held back: a battery level it made
+    up after looking the real one up). None when an action ran, a look-up failed or has no
+    phrase that fills: then `turn_rules.wordless_reply` answers."""
+    ran = [(c, r) for c, r in zip(calls, outcomes, strict=True) if r.error != NOT_REQUESTED]
+    if not ran or any(c.name not in read_only or r.is_error for c, r in ran):
+        return None
+    phrases = [result_phrase(voice.get(c.name), c, r) for c, r in ran]
+    if any(p is None for p in phrases):
+        return None
+    return " ".join(dict.fromkeys(p for p in phrases if p is not None))  # a repeated look-up once
