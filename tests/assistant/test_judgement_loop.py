@@ -11,6 +11,7 @@ from robovoice.assistant.loop import Assistant
 from robovoice.config import RobotConfig
 from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ScriptedReply, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
+from tests.assistant.scripted import scripted_turn
 
 SIM = RobotConfig(address="sim://?speed=50")
 
@@ -60,15 +61,8 @@ async def test_a_look_up_beside_an_action_is_offered_only_look_ups_then_the_acti
     """"Which room are you in? After that come to the bedroom.": on the look-up's step only
     read-only tools are offered (the small model drove instead of looking); answered in words,
     the next thing asked still follows."""
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
-        [TextReply("I am in the living room."), call("navigate_to", target="bedroom")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            said = "Which room are you in? After that come to the bedroom."
-            result = await Assistant(backend, robot.tools).turn(said)
-        finally:
-            await backend.aclose()
+    result, server = await scripted_turn([TextReply("I am in the living room."), call("navigate_to", target="bedroom")],
+                                         "Which room are you in? After that come to the bedroom.")
     first, second = server.requests[0].tool_names, server.requests[1].tool_names
     assert "get_robot_pose" in first and "navigate_to" not in first and "set_projector_power" not in first
     assert "navigate_to" in second
@@ -147,14 +141,9 @@ async def test_never_mind_cancels_a_drive_under_way_and_nothing_when_none_is() -
 async def test_a_tool_errors_hint_read_out_is_not_said() -> None:
     """The robot's error hints are for the model ("tell the user you do not know that place,
     name the known places and ask which one they mean"); a small model read one out."""
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+    result, _ = await scripted_turn(
         [call("navigate_to", target="garage"),
-         TextReply("I do not know that place. Name the known places and ask which one they mean.")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            result = await Assistant(backend, robot.tools).turn("Go to the garage.")
-        finally:
-            await backend.aclose()
+         TextReply("I do not know that place. Name the known places and ask which one they mean.")],
+        "Go to the garage.")
     assert [o.error for o in result.outcomes] == ["unknown_target"]
     assert result.reply == "I do not know that place."

@@ -26,6 +26,7 @@ from robovoice.assistant.turn_rules import wordless_reply
 from robovoice.config import RobotConfig
 from robovoice.llm.fake_server import CallbackReply, FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
+from tests.assistant.scripted import scripted_turn
 
 SIM = RobotConfig(address="sim://?speed=50")
 
@@ -165,12 +166,6 @@ def test_a_measured_figure_must_come_from_the_conversation(sentence: str, invent
 
 
 async def test_a_battery_level_the_model_never_looked_up_is_not_said() -> None:
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
-        [TextReply("Your battery is at 80 percent. Anything else?")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            result = await Assistant(backend, robot.tools).turn("How much battery have you got?")
-        finally:
-            await backend.aclose()
+    result, _ = await scripted_turn([TextReply("Your battery is at 80 percent. Anything else?")],
+                                    "How much battery have you got?")
     assert result.reply == "Anything else?"
