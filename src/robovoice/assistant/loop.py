@@ -307,7 +307,7 @@ class Assistant:
         for the model only or tool-call syntax (`speech_guard`), gives a measured figure found
         nowhere in the conversation (`known`), or claims an action done when none was
         (`no_action`): then it is neither said nor kept, and a turn left with nothing
-        said ends with `wordless_reply`, not in silence."""
+        said ends with its look-ups' phrases (`found_phrase`) or `wordless_reply`, not in silence."""
         spoken = speakable(sentence, model_only)
         if spoken is None:
             log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)

@@ -61,10 +61,8 @@ def phrase_answer(
     looked_up = all(called.name in read_only for called, _ in step)
     if not (continuing and looked_up) and (not asks_nothing(intent) or any(c.name in read_only for c, _ in step)):
         return None
-    phrases = [result_phrase(voice.get(called.name), called, returned) for called, returned in step]
-    if any(p is None for p in phrases):
-        return None
-    return " ".join(p for p in phrases if p is not None)
+    phrases = _filled(voice, step)
+    return " ".join(phrases) if phrases is not None else None
 
 
 def found_phrase(
@@ -78,7 +76,11 @@ def found_phrase(
     ran = [(c, r) for c, r in zip(calls, outcomes, strict=True) if r.error != NOT_REQUESTED]
     if not ran or any(c.name not in read_only or r.is_error for c, r in ran):
         return None
-    phrases = [result_phrase(voice.get(c.name), c, r) for c, r in ran]
-    if any(p is None for p in phrases):
-        return None
-    return " ".join(dict.fromkeys(p for p in phrases if p is not None))  # a repeated look-up once
+    phrases = _filled(voice, ran)
+    return " ".join(dict.fromkeys(phrases)) if phrases is not None else None  # a repeated look-up once
+
+
+def _filled(voice: Mapping[str, VoiceDecl], calls: Sequence[tuple[ToolCalled, ToolReturned]]) -> list[str] | None:
+    """Each call's phrase, or None when any has none that fills."""
+    phrases = [result_phrase(voice.get(called.name), called, returned) for called, returned in calls]
+    return [p for p in phrases if p is not None] if all(p is not None for p in phrases) else None
