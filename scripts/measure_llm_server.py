@@ -2,6 +2,7 @@
 
     .venv/bin/python scripts/measure_llm_server.py chatml-function-calling   # starts the server itself
     .venv/bin/python scripts/measure_llm_server.py gguf-template
+    .venv/bin/python scripts/measure_llm_server.py llama-server    # llama.cpp's C++ server (build_llama_server.sh)
     .venv/bin/python scripts/measure_llm_server.py --url http://127.0.0.1:8080/v1 --model qwen  # one running
 
 Runs dev cases (tests/data/eval/text.jsonl, never the frozen test set) through `robovoice eval`
@@ -57,7 +58,7 @@ def measure(url: str, model: str, cases: list[str], folder: Path) -> dict[str, o
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("mode", nargs="?", choices=list(MODES), help="start llama-cpp-python's server in this mode")
+    parser.add_argument("mode", nargs="?", choices=list(MODES), help="start the server of this recipe (llama_server.MODES)")
     parser.add_argument("--url", help="measure a server already running here instead")
     parser.add_argument("--model", default=MODEL_ALIAS, help="the model name for --url")
     parser.add_argument("--cases", default=",".join(CASES), help="dev case ids, comma-separated")

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Install everything (scripts/setup.sh), lint and type-check src and tests (ruff, mypy --strict),
+# Install everything (scripts/setup.sh, and llama.cpp's llama-server for the real-server tests:
+# scripts/build_llama_server.sh, once per machine), lint and type-check src and tests (ruff, mypy --strict),
 # run the official MCP conformance scenarios against `robovoice serve --robot sim --transport http`,
 # then the whole test suite with warnings as errors (pyproject.toml: filterwarnings) -- last, so that
 # its summary line closes the output.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
+bash scripts/build_llama_server.sh >/dev/null
 echo "[test] ruff check src tests"
 .venv/bin/ruff check src tests
 echo "[test] mypy --strict src tests"
