@@ -31,6 +31,16 @@ CASES: list[tuple[str, str, list[TextCall]]] = [
     ('{{"name": "navigate_to", "arguments": {"target": "kitchen"}}}}', "", [DRIVE]),
     ('{{"name": "get_battery_state", "arguments": {}}}}\n'
      '{{"name": "navigate_to", "arguments": {"target": "kitchen"}}}}', "", [BATTERY, DRIVE]),
+    # the same template through llama-server and llama-cpp-python, after a look-up hint: the call in the
+    # tag the prompt lists the tools in, then an invented result (dropped), or cut off by max_tokens
+    ('<tools>\n{"name": "get_battery_state", "arguments": {}}\n</tools>\nThe battery now: 75%.', "", [BATTERY]),
+    ('<tools>\n{"name": "get_battery_state", "arguments": {}}\n</to', "", [BATTERY]),
+    ('```\n{{"name": "get_battery_state", "arguments": {}}}}\n```\nThe battery now: 75%.', "", [BATTERY]),
+    ('```json\n{"name": "navigate_to", "arguments": {"target": "kitchen"}}\n```', "", [DRIVE]),
+    ('{{"name": "get_battery_state"}}', "", [BATTERY]),  # no arguments at all
+    # the call, then a result the model made up, fenced: the rest is dropped
+    ('{{"name": "get_battery_state", "arguments": {}}}}\n```\nThe battery now: 75%.\n```', "", [BATTERY]),
+    ('{"name": "navigate_to", "arguments": {"target": "kitchen"}}\nI have arrived.', "", [DRIVE]),
 ]
 
 PLAIN = [
@@ -43,6 +53,11 @@ PLAIN = [
     "[laughs] Good one.",
     "{{not a call}}",
     '{{"name": "dance", "arguments": {}}}}',  # doubled braces, but not an offered tool
+    '<tools>\n{"type": "function", "function": {"name": "get_battery_state"}}\n</tools>',  # a tool read back
+    '<tools>{"name": "dance", "arguments": {}}</tools>',  # wrapped, but not an offered tool
+    "<b>Bold</b> words.",
+    "```\nprint('hello')\n```",  # a code block that is not a call
+    '{"name": "Ben"}',  # a name, but not of an offered tool
 ]
 
 

@@ -1,9 +1,10 @@
-"""robovoice against real OpenAI-compatible servers (issue 16), started as docs/llm.md says:
-llama-cpp-python's own server (``python -m llama_cpp.server``) serving the embedded
-Qwen2.5-Coder-1.5B GGUF, in its ``chatml-function-calling`` mode and with the GGUF's own chat
-template (no ``--chat_format``: tools rendered by the model's Jinja template, calls come back as
-text). Each server is started once per session on a port the OS chooses, and warmed with the
-assistant's own prompt as a deployment would be. `robovoice chat` and `robovoice assist --input`
+"""robovoice against real OpenAI-compatible servers (issue 16), started as docs/llm.md says, each
+serving the embedded Qwen2.5-Coder-1.5B GGUF: llama-cpp-python's own server (``python -m
+llama_cpp.server``) in its ``chatml-function-calling`` mode and with the GGUF's own chat template
+(no ``--chat_format``: tools rendered by the model's Jinja template, calls come back as text), and
+llama.cpp's C++ ``llama-server --jinja`` (built by scripts/build_llama_server.sh). Each server is
+started once per session on a port the OS chooses, and warmed with the assistant's own prompt as
+a deployment would be. `robovoice chat` and `robovoice assist --input`
 run as real processes; what reached the sim robot is read from the tool results they print, and
 no tool-call syntax may ever be printed or spoken."""
 
@@ -126,12 +127,9 @@ def _robot_lines(out: str) -> list[str]:
 
 
 # Failures seen on these servers and who they are reported to (non-strict: each still runs, and
-# turns XPASS once fixed). Seen 23 Nov 2026, docs/llm.md "Recipes" (the battery question: why).
-KNOWN = {
-    ("gguf-template", "question"): "under the GGUF template the 1.5B model's first token 'The' beats a call's '{{' "
-                                   "by ~1 logit and it answers from get_battery_state's description; a server has "
-                                   "no tool_bias and logit_bias cannot stand in for it generally",
-}
+# turns XPASS once fixed). None now: the GGUF template's battery question (docs/llm.md "Recipes")
+# passes since a guessed figure is looked up (27 Nov 2026).
+KNOWN: dict[tuple[str, str], str] = {}
 
 
 def _known(request: pytest.FixtureRequest, mode: str, what: str) -> None:

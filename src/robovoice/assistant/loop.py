@@ -31,7 +31,7 @@ from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import found_phrase, phrase_answer
-from robovoice.assistant.prompt import SYSTEM_PROMPT, step_hint
+from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import (
     MODEL_ONLY,
@@ -141,7 +141,10 @@ class Assistant:
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
         answer_now = False
         model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
+        for tool in await self.tools.specs():  # and the tools' descriptions (a small model reads them back)
+            model_only.add(tool.description, short_copies=False)
         refused = acted = False  # the check before acting refused a call / an actuation reached the robot
+        retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
             due = done(outcomes, worded)
@@ -153,10 +156,11 @@ class Assistant:
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
             lookup = asked_left(asked, outcomes, worded) and lookups[done(outcomes, worded)]
-            specs = offered(specs, lookup)
+            specs = offered(specs, lookup or lookup_only)
+            lookup_only = False
             try:
-                text, requested = await self._model_step(messages, specs, metrics, emit, model_only,
-                                                         no_action=refused and not acted)
+                text, requested, guessed = await self._model_step(messages, specs, metrics, emit, model_only,
+                                                                  no_action=refused and not acted)
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
                 fell_back = True
@@ -182,6 +186,13 @@ class Assistant:
                     continue
             if text:
                 replies.append(text)
+            if guessed and not requested and not retried and any(s.read_only for s in specs) and not looked_up:
+                # a figure nothing gave the model (held back, not said): it answered from the tool's
+                # description instead of calling it; asked once more, with only the look-ups offered
+                retried = lookup_only = True
+                messages.extend([ChatMessage("assistant", text)] if text else [])
+                messages.append(ChatMessage("user", GUESSED_HINT))
+                continue
             messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
             if not requested and lookup and text and step < max_steps - 2:
                 # the look-up answered in words: the next thing asked is still to do
@@ -262,13 +273,15 @@ class Assistant:
     async def _model_step(
         self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit,
         model_only: ModelOnlyText, *, no_action: bool = False,
-    ) -> tuple[str, list[ToolCallRequested]]:
-        """One model step, its sentences said as they come. `no_action`: a call was refused and no
-        action has run this turn, so a sentence claiming one was done is false and not said."""
+    ) -> tuple[str, list[ToolCallRequested], bool]:
+        """One model step, its sentences said as they come: what it said, the calls it asked for, and
+        whether a sentence was held back for a figure nobody gave it. `no_action`: a call was refused
+        and no action has run this turn, so a sentence claiming one was done is false and not said."""
         splitter = SentenceSplitter()
         known = figures_in(m.text for m in messages)  # what a figure the model says may come from
         text: list[str] = []
         requested: list[ToolCallRequested] = []
+        guessed = False
         started = time.perf_counter()
         first = True
         waited = 0.0  # time spent waiting on the model, excluding our own handling of its output
@@ -283,7 +296,8 @@ class Assistant:
             match event:
                 case TextDelta(delta):
                     for sentence in splitter.feed(delta):
-                        await self._say_speakable(sentence, text, metrics, emit, model_only, known, no_action)
+                        guessed |= await self._say_speakable(sentence, text, metrics, emit, model_only, known,
+                                                             no_action)
                 case ToolCallRequested():
                     requested.append(event)
                 case Finished():
@@ -292,36 +306,38 @@ class Assistant:
         metrics.model_ms += waited * 1000.0
         rest = splitter.flush()
         if rest:
-            await self._say_speakable(rest, text, metrics, emit, model_only, known, no_action)
+            guessed |= await self._say_speakable(rest, text, metrics, emit, model_only, known, no_action)
         for i, request in enumerate(requested):
             if not request.id:  # some servers omit ids; the history needs them to pair results
                 requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
                                                  request.raw_arguments, request.arguments_error)
-        return " ".join(text).strip(), requested
+        return " ".join(text).strip(), requested, guessed
 
     async def _say_speakable(
         self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, model_only: ModelOnlyText,
         known: Collection[float], no_action: bool = False,
-    ) -> None:
+    ) -> bool:
         """Say a sentence of the model's and keep it in `said`, unless it reads out words meant
         for the model only or tool-call syntax (`speech_guard`), gives a measured figure found
         nowhere in the conversation (`known`), or claims an action done when none was
         (`no_action`): then it is neither said nor kept, and a turn left with nothing
-        said ends with its look-ups' phrases (`found_phrase`) or `wordless_reply`, not in silence."""
+        said ends with its look-ups' phrases (`found_phrase`) or `wordless_reply`, not in silence.
+        True when it was held back for such a figure."""
         spoken = speakable(sentence, model_only)
         if spoken is None:
             log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)
-            return
+            return False
         figure = invented_figure_in(spoken, known)
         if figure is not None:
             log.warning("not saying %r: %r is a figure nobody gave the model", sentence, figure)
-            return
+            return True
         claim = claimed_action_in(spoken) if no_action else None
         if claim is not None:
             log.warning("not saying %r: it claims an action (%r) after a refusal, and none ran", sentence, claim)
-            return
+            return False
         said.append(spoken.strip())
         await self._say(spoken, metrics, emit)
+        return False
 
     @staticmethod
     async def _say(sentence: str, metrics: TurnMetrics, emit: _Emit) -> None:

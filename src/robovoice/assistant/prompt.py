@@ -21,7 +21,9 @@ NEXT_STEP_HINT = "Now do the next thing I asked: {}."
 # a look-up the small model tends to answer from nothing ("You are in the living room.")
 FIRST_LOOKUP_HINT = "One thing at a time, in order. First call the tool that finds out: {}."
 NEXT_LOOKUP_HINT = "Now call the tool that finds out the next thing I asked: {}."
-STEP_HINTS = (FIRST_STEP_HINT, NEXT_STEP_HINT, FIRST_LOOKUP_HINT, NEXT_LOOKUP_HINT)
+# after an answer whose figure nothing in the conversation gave (a battery level never looked up)
+GUESSED_HINT = "Find that out with one of your tools first."
+STEP_HINTS = (FIRST_STEP_HINT, NEXT_STEP_HINT, FIRST_LOOKUP_HINT, NEXT_LOOKUP_HINT, GUESSED_HINT)
 
 
 def step_hint(step: str, lookup: bool, *, first: bool) -> str:

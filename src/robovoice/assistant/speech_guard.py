@@ -24,6 +24,10 @@ _TOOL_SYNTAX = re.compile(
     r"|<\|[A-Za-z_][\w-]*\|>"  # chat-template control tokens: <|im_start|>, <|python_tag|>, <|eot_id|>
     r"|<(?:start|end)_of_turn>"
     r"|</?think>"  # a reasoning model's thinking, passed through by a server without a reasoning parser
+    r"|</?tools>"  # the tag Qwen2.5's template lists the tools in, copied out by the model
+    r'|\{\s*"type"\s*:\s*"function"'  # a tool's definition read back
+    r'|\{+\s*"name"\s*:'  # any object that opens with a name: a call, its arguments left out or not
+    r"|```"  # a Markdown code fence (a coder model puts a call between two)
     r"|\bfunctions\.[A-Za-z_]\w*"  # chatml-function-calling's call head (not "functions." ending a sentence)
     r'|\{\s*"(?:name|function)"\s*:\s*"[^"]*"\s*,\s*"(?:arguments|parameters)"'  # a call as a JSON object
     r'|"(?:arguments|parameters)"\s*:\s*\{[^{}]*\}\s*,\s*"name"\s*:'  # ... with its keys the other way round
@@ -90,10 +94,12 @@ class ModelOnlyText:
         other._runs = set(self._runs)
         return other
 
-    def add(self, text: str) -> None:
-        """Remember `text` as model-only (every run of 3 to `COPIED_RUN_WORDS` of its words)."""
+    def add(self, text: str, *, short_copies: bool = True) -> None:
+        """Remember `text` as model-only (every run of 3 to `COPIED_RUN_WORDS` of its words; only the
+        long runs without `short_copies`: a tool's description shares short runs with true answers,
+        "it is charging")."""
         words = _words(text)
-        for size in range(_SHORTEST_COPY, COPIED_RUN_WORDS + 1):
+        for size in range(_SHORTEST_COPY if short_copies else COPIED_RUN_WORDS, COPIED_RUN_WORDS + 1):
             self._runs.update(tuple(words[i : i + size]) for i in range(len(words) - size + 1))
 
     def copied_in(self, sentence: str) -> str | None:

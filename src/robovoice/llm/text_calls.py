@@ -7,7 +7,15 @@ Servers without a tool-call parser for the model pass its raw call syntax throug
 * llama-cpp-python's ``chatml-function-calling``: ``functions.x:\\n{...}`` heads, or a bare
   ``functions.x:`` (its plain-reply path is constrained by the follow-up grammar),
 * Mistral: ``[TOOL_CALLS][{"name": "x", "arguments": {...}}]``,
-* a bare ``{"name": "x", "arguments": {...}}`` object that is the whole answer.
+* a bare ``{"name": "x", "arguments": {...}}`` object that starts the answer (what follows it, often
+  a result the model invents, is dropped),
+* the same object as the answer's start, wrapped in a tag of the prompt's or a Markdown code fence
+  (Qwen2.5-Coder under its own GGUF template writes ``<tools>\n{"name": "x", "arguments": {}}\n</tools>``,
+  the tag its prompt lists the tools in, or the call between two lines of three backticks, and
+  often goes on to invent the result: that rest is dropped).
+
+A call object of an offered tool without ``arguments`` (``{"name": "return_to_dock"}``) is a call
+with none.
 
 `TextCallParser` is fed the streamed content. It releases text as soon as it cannot be the start
 of such a call and holds the rest; at the end it turns what it held into `TextCall`s, or releases
@@ -37,6 +45,9 @@ _LINE_START = (FUNCTIONS_PREFIX,)  # start a call at the start of a line
 _FUNCTION_HEAD = re.compile(r"^[ \t]*functions\.([A-Za-z_][\w.\-]*)[ \t]*:", re.MULTILINE)
 _BLOCK = re.compile(re.escape(TOOL_CALL_OPEN) + r"(.*?)(?:" + re.escape(TOOL_CALL_CLOSE) + r"|\Z)", re.DOTALL)
 _NAME = re.compile(r'"name"\s*:\s*"([^"]+)"')
+# `<tools>` or a Markdown code fence starting the answer: maybe a wrapped call
+_OPENING_TAG = re.compile(r"<([a-z_]+)>|```(?:json)?")
+_TAG_PREFIX = re.compile(r"(?:<[a-z_]*|`{1,3}(?:j(?:s(?:on?)?)?)?)\Z")  # what could still grow into one
 
 
 @dataclass(frozen=True, slots=True)
@@ -106,7 +117,7 @@ class TextCallParser:
                 start = i + 1
         if not self._released_any:
             stripped = text.lstrip()
-            if stripped.startswith(("{", "[")):
+            if stripped.startswith(("{", "[")) or _OPENING_TAG.match(stripped):
                 found.append(len(text) - len(stripped))
         return min(found) if found else None
 
@@ -114,6 +125,8 @@ class TextCallParser:
         """Where a tail of `text` that could still grow into a marker begins (len(text) if none)."""
         if not self._released_any and not text.strip():
             return 0  # leading blanks: wait for the first word
+        if not self._released_any and _TAG_PREFIX.match(text.lstrip()):
+            return 0  # "<too": maybe a wrapped call
         for i in range(max(0, len(text) - len(max(_ANYWHERE + _LINE_START, key=len))), len(text)):
             tail = text[i:]
             if any(m.startswith(tail) for m in _ANYWHERE):
@@ -133,7 +146,18 @@ def _parse_calls(text: str, names: frozenset[str]) -> tuple[str, list[TextCall]]
         return ("", calls) if calls else (text, [])
     if stripped.startswith(FUNCTIONS_PREFIX):
         return _functions(text)
+    if tag := _OPENING_TAG.match(stripped):
+        return _wrapped(stripped, tag, names, text)
     calls = list(_json_calls(stripped, names))  # a bare JSON answer: only a call of an offered tool
+    return ("", calls) if calls else (text, [])
+
+
+def _wrapped(stripped: str, tag: re.Match[str], names: frozenset[str], text: str) -> tuple[str, list[TextCall]]:
+    """A call of an offered tool wrapped in a tag (``<tools>{…}</tools>``); what follows the tag is
+    dropped, it is the model writing a result it has not seen. Anything else stays text."""
+    inner = stripped[tag.end() :]
+    close = inner.find("</" if tag.group(1) else "```")  # its closing tag, maybe cut off ("</to")
+    calls = list(_json_calls((inner[:close] if close >= 0 else inner).strip(), names))
     return ("", calls) if calls else (text, [])
 
 
@@ -164,17 +188,15 @@ def _functions(text: str) -> tuple[str, list[TextCall]]:
 
 
 def _json_calls(text: str, names: frozenset[str] | None) -> Iterator[TextCall]:
-    """Calls from a JSON object or list of objects with ``name`` and ``arguments`` (or ``parameters``);
-    with `names`, only those of these tools and only when the JSON is the whole text."""
+    """Calls from a JSON object or list of objects with ``name`` and ``arguments`` (or ``parameters``)
+    at the start of `text`; with `names`, only those of these tools. Text after the JSON is not
+    read: the model going on to write a result it has not seen."""
     try:
-        data, end = json.JSONDecoder().raw_decode(text)
-        whole = not text[end:].strip()
+        data, _ = json.JSONDecoder().raw_decode(text)
     except json.JSONDecodeError:
-        data, whole = _undoubled(text), True  # all of the text, or None
+        data = _undoubled(text)
         if data is None:
             return
-    if names is not None and not whole:
-        return
     for item in data if isinstance(data, list) else [data]:
         call = _call_from_object(item)
         if call is None or (names is not None and call.name not in names):
@@ -188,11 +210,13 @@ def _json_calls(text: str, names: frozenset[str] | None) -> Iterator[TextCall]:
 def _undoubled(text: str) -> Any | None:
     """Calls whose braces a chat template doubled (``{{"name": …}}}}``, one or several: Jinja's
     escaped ``{{`` rendered literally, seen from the Qwen GGUF's own template): the object inside
-    (a list of them when there are several); None unless all of `text` is that."""
+    (a list of them when there are several); None unless `text` starts with that."""
     rest = text.lstrip()
     found: list[Any] = []
     while rest:
         if not rest.startswith("{{"):
+            if found:
+                break  # what follows the calls
             return None
         inner = "{" + rest.lstrip("{")
         if not inner[1:].lstrip().startswith('"'):
@@ -200,6 +224,8 @@ def _undoubled(text: str) -> Any | None:
         try:
             data, end = json.JSONDecoder().raw_decode(inner)
         except json.JSONDecodeError:
+            if found:
+                break
             return None
         found.append(data)
         rest = inner[end:].lstrip().lstrip("}").lstrip()
@@ -212,7 +238,7 @@ def _call_from_object(item: Any) -> TextCall | None:
     if not isinstance(item, dict) or not isinstance(item.get("name"), str):
         return None
     if "arguments" not in item and "parameters" not in item:
-        return None
+        return TextCall(item["name"], "{}") if len(item) == 1 else None  # {"name": "return_to_dock"}
     arguments = item.get("arguments", item.get("parameters"))
     if isinstance(arguments, str):
         return TextCall(item["name"], arguments)
