@@ -22,8 +22,9 @@ for pkg in libportaudio2 espeak-ng sox libjpeg-turbo-progs chromium; do
 done
 command -v npm >/dev/null 2>&1 || need_apt+=(nodejs npm)
 "${PYTHON:-python3}" -c "import ensurepip, venv" >/dev/null 2>&1 || need_apt+=(python3-venv)
-# ROS 2 interface packages (scripts/build_ros2_interfaces.sh) compile with cmake, g++ and Python's headers
-for cmd in cmake g++; do command -v "$cmd" >/dev/null 2>&1 || need_apt+=("$cmd"); done
+# ROS 2 interface packages (scripts/build_ros2_interfaces.sh) and llama.cpp's llama-server
+# (scripts/build_llama_server.sh) compile with cmake, make, g++ and Python's headers
+for cmd in cmake g++ make; do command -v "$cmd" >/dev/null 2>&1 || need_apt+=("$cmd"); done
 "${PYTHON:-python3}" -c "import os, sysconfig; assert os.path.exists(sysconfig.get_paths()['include'] + '/Python.h')" \
     >/dev/null 2>&1 || need_apt+=(python3-dev)
 if [ ${#need_apt[@]} -gt 0 ]; then

@@ -101,6 +101,41 @@ def test_conditions_courtesy_and_wishes(text: str, steps: tuple[str, ...], why: 
     assert intent.steps == steps and intent.refusal is why, intent
 
 
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Go to the hallway, but first turn the projector on.", ("first turn the projector on", "Go to the hallway")),
+    ("Call Ben. Before that, come to the bedroom.", ("come to the bedroom", "Call Ben")),
+    ("Before you call Anna, go to the kitchen.", ("go to the kitchen", "call Anna")),
+    ("First of all go to the kitchen, then ring Ben.", ("First of all go to the kitchen", "ring Ben")),
+    ("Go to the bathroom first, then the hallway.", ("Go to the bathroom first", "the hallway")),  # already in order
+])
+def test_order_words_put_the_steps_in_the_order_to_do_them(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps", "declined"), [
+    # one thing taken back by its name; what was asked beside it stays
+    ("Turn the projector on and call Anna - no, not Anna. Just the projector.", ("Turn the projector on",), "anna"),
+    ("Call Ben and then drive to the bathroom. Actually, skip the bathroom.", ("Call Ben",), "bathroom"),
+    ("Ring Clara and go to the hallway, oh, leave Clara, she's asleep.", ("go to the hallway",), "clara"),
+    # keeping a thing as it is asks for nothing
+    ("Leave the projector on, please.", (), "projector"),
+    ("You can leave the call running.", (), "call"),
+    # a dash breaks clauses, and a correction after it stands
+    ("Go to the kitchen - no wait, the bedroom.", ("the bedroom",), "kitchen"),
+])
+def test_taking_back_one_thing_and_keeping_things_as_they_are(text: str, steps: tuple[str, ...], declined: str) -> None:
+    intent = read_request(text)
+    assert intent.steps == steps and declined in intent.negated_words(), intent
+
+
+def test_the_persons_own_plan_after_a_request_is_its_reason() -> None:
+    reason = read_request("Give Ben a ring, I want to show him the garden.")
+    assert reason.steps == ("Give Ben a ring",)
+    assert read_request("Turn the projector on, I'd like to talk to Anna.").steps == (
+        "Turn the projector on", "I'd like to talk to Anna")  # asks for a call
+    assert read_request("I want to show Ben the garden.").asks_action  # alone, it may be the request
+
+
 def test_a_tool_named_for_what_was_declined_is_refused() -> None:
     projector = ToolSpec("set_projector_power", "projector")
     declined = read_request("Leave the projector alone, but come here.")

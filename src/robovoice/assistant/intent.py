@@ -111,7 +111,8 @@ def words(text: str) -> list[str]:
 # Sentence ends, commas/semicolons, and the conjunctions that join requests.
 _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*"
-    r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+",
+    r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+"
+    r"|\s+[-\u2013\u2014]+\s+",  # "go to the bedroom - sorry, no, the living room"
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
@@ -130,7 +131,8 @@ def split_clauses(text: str) -> list[str]:
 # --- classifying ----------------------------------------------------------------------------
 
 _FILLER = re.compile(
-    r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first|firstly|next|finally|just|"
+    r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
+    r"next|finally|just|"
     r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
     re.IGNORECASE,
 )
@@ -138,8 +140,9 @@ _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
     r"hold off|rather not|rather you didn'?t|no,|"
-    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going)|let (?:it|that|them) be|don'?t touch)\b"
-    r"|\bnot\s*$",
+    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace)|"
+    r"let (?:it|that|them) be|don'?t touch)\b"
+    r"|\bnot\s*$|^not\b",  # "…, not Ben"
     re.IGNORECASE,
 )
 _LATER = re.compile(
@@ -268,11 +271,24 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     is the request that question offered."""
     clauses: list[Clause] = []
     condition = corrected = False  # after "if Ben rings, …" / after "…, no, …"
+    undone: list[int] = []  # the requests a bare "no" just took back: a "not Ben" after it says which
+    front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
     for part in split_clauses(text):
         if _TAG.match(part.strip()):
             continue  # "…, would you?", "…, dear": part of the clause before it
         bare = _FILLER.sub("", part.strip()).strip()
         kind = classify(part)
+        if _BEFORE_THAT.match(bare):
+            front = _first_asked(clauses)
+            clauses.append(Clause(part, ClauseKind.STATEMENT))
+            continue
+        if (before := _BEFORE_YOU.match(bare)) and classify(before.group(1)) is ClauseKind.REQUEST:
+            # "before you ring Clara, put the projector on": the call comes after what follows
+            clauses.append(Clause(before.group(1), ClauseKind.REQUEST))
+            front = len(clauses) - 1
+            continue
+        if kind is ClauseKind.REQUEST and _FIRST.search(part.strip()):
+            front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
         if _SEQUENCE.match(bare):
             kind = ClauseKind.REQUEST  # "once you've checked your battery, …": that first
         elif _CONDITION.match(bare):
@@ -288,11 +304,24 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
+        if kind is ClauseKind.REQUEST and _reason(bare, clauses):
+            kind = ClauseKind.STATEMENT  # "ring Clara, I want to show her my cake": why, not what
         corrected = corrected and not bare
+        if (named := _named_back(bare, clauses, undone)) is not None:
+            # "…, no, not Ben", "actually, skip the kitchen": only the request that names it is withdrawn
+            kind, corrected = ClauseKind.NEGATED, False
+            clauses = [Clause(c.text, ClauseKind.NEGATED if i in named else
+                              ClauseKind.REQUEST if i in undone else c.kind) for i, c in enumerate(clauses)]
+        undone = []
         if kind is ClauseKind.NEGATED and _WITHDRAWAL.match(bare):
             # "switch the projector on… actually, no, don't": the requests said before are withdrawn
-            corrected = any(c.kind is ClauseKind.REQUEST for c in clauses)
+            undone = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST]
+            corrected = bool(undone)
             clauses = [Clause(c.text, ClauseKind.NEGATED) if c.kind is ClauseKind.REQUEST else c for c in clauses]
+        if front is not None and kind in (ClauseKind.REQUEST, ClauseKind.QUESTION):
+            clauses.insert(front, Clause(part, kind))
+            front = None
+            continue
         clauses.append(Clause(part, kind))
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
@@ -301,7 +330,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 # A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
 _WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
-                         r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?)\b[\s,]*)+$", re.IGNORECASE)
+                         r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no)"
+                         r"\b[\s,]*)+$",
+                         re.IGNORECASE)
 # A condition before a request: what to do if or when something happens, not now.
 _CONDITION = re.compile(  # (not a question: "when will you be charged?")
     r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case)\b",
@@ -314,7 +345,43 @@ _COURTESY = re.compile(
 # … these say what to do first ("once you've checked your battery, come here").
 _SEQUENCE = re.compile(r"^(?:once|after|when) you(?:'ve| have) \w+", re.IGNORECASE)
 _TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
-                  r"dear|love|pet|darling|my dear)$", re.IGNORECASE)
+                  r"dear|love|pet|darling|my dear|i mean)$", re.IGNORECASE)
+
+
+# Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
+_BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
+_BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
+_FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
+# "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
+# unless it asks the robot for a call or to find something out ("…, I'd like to talk to Anna")
+_OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:really )?(?:want|need|wish|like|have|got) to (\w+)", re.IGNORECASE)
+_ASKING_VERBS = frozenset({"talk", "speak", "call", "ring", "phone", "video", "chat", "see", "know", "check", "hear",
+                           "find"})
+# Taking back one thing by its name: "not Ben", "skip the kitchen", "leave Clara", "forget about the call".
+_NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch)\s+((?:\w+\s*){1,3})$", re.IGNORECASE)
+_NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
+
+
+def _first_asked(clauses: list[Clause]) -> int | None:
+    return next((i for i, c in enumerate(clauses) if c.kind in (ClauseKind.REQUEST, ClauseKind.QUESTION)), None)
+
+
+def _reason(bare: str, clauses: list[Clause]) -> bool:
+    plan = _OWN_PLAN.match(bare)
+    return (plan is not None and plan.group(1).lower() not in _ASKING_VERBS
+            and any(c.kind is ClauseKind.REQUEST for c in clauses))
+
+
+def _named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int] | None:
+    """The requests said before that a "not Ben" or "skip the kitchen" names (None when it names
+    none of them, or is no such clause): just those are taken back."""
+    match = _NOT_THAT.match(bare)
+    if match is None:
+        return None
+    named = set(words(match.group(1))) - _NOT_NAMES
+    hit = {i for i, c in enumerate(clauses)
+           if (c.kind is ClauseKind.REQUEST or i in undone) and named & set(words(c.text))}
+    return hit or None
 
 
 def _fragment(part: str) -> bool:
