@@ -92,7 +92,7 @@ def test_a_bare_no_takes_back_what_was_asked_and_a_place_after_it_corrects_it() 
     ("If you don't mind, come to the hallway.", ("come to the hallway",), None),  # courtesy
     ("When you're ready, call Ben.", ("call Ben",), None),
     ("Once you've checked your battery, drive to the bedroom.",
-     ("Once you've checked your battery", "drive to the bedroom"), None),  # that first
+     ("check your battery", "drive to the bedroom"), None),  # that first, said as a request
     ("It'd be lovely if you could call Clara.", ("It'd be lovely if you could call Clara",), None),  # a wish
     ("I was wondering if you could come to the hallway.", ("I was wondering if you could come to the hallway",), None),
 ])
@@ -126,6 +126,26 @@ def test_order_words_put_the_steps_in_the_order_to_do_them(text: str, steps: tup
 def test_taking_back_one_thing_and_keeping_things_as_they_are(text: str, steps: tuple[str, ...], declined: str) -> None:
     intent = read_request(text)
     assert intent.steps == steps and declined in intent.negated_words(), intent
+
+
+@pytest.mark.parametrize(("text", "carries_on"), [
+    ("Keep going, don't stop, I'm talking to the dog.", True),
+    ("No need to stop, carry on.", True),
+    ("Hold it! Stay put!", False),  # stay put: stop moving
+    ("Never mind, don't go there after all.", False),  # calling the drive off
+    ("Don't stop at the kitchen, go on to the bedroom.", False),  # a new request
+])
+def test_words_that_say_carry_on(text: str, carries_on: bool) -> None:
+    assert read_request(text).carries_on is carries_on
+
+
+def test_courtesy_around_a_request_and_an_only_after_step() -> None:
+    assert read_request("Be a love and nip to the hallway.").steps == ("nip to the hallway",)
+    assert read_request("Could you be an angel and call Ben?").steps == ("Could you call Ben",)
+    assert read_request("Switch the projector off, but only after you've gone to the kitchen.").steps == (
+        "go to the kitchen", "Switch the projector off")
+    assert read_request("Once you've headed to the hallway, ring Ben.").steps == ("head to the hallway", "ring Ben")
+    assert read_request("Call Anna. Oh, leave it, she's out.").refusal is ClauseKind.NEGATED
 
 
 def test_the_persons_own_plan_after_a_request_is_its_reason() -> None:

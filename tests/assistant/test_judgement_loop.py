@@ -138,6 +138,25 @@ async def test_never_mind_cancels_a_drive_under_way_and_nothing_when_none_is() -
     assert [o.error for o in projector.outcomes] == [NOT_REQUESTED]
 
 
+async def test_keep_going_dont_stop_during_a_drive_stops_nothing() -> None:
+    """The words say to carry on: the stop and cancel tools stay refused while the robot moves
+    (test v8: "Keep going, keep going, don't stop - I was only talking to the cat." cancelled)."""
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("cancel_navigation"), TextReply("All right."), call("stop_robot"), TextReply("All right.")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            assert robot.sim is not None
+            await robot.sim.apply_setup("driving")
+            cancelled = await Assistant(backend, robot.tools).turn("Keep going, don't stop, I'm talking to the dog.")
+            stopped = await Assistant(backend, robot.tools).turn("No need to stop, carry on.")
+            assert robot.sim.state.moving
+        finally:
+            await backend.aclose()
+    assert [o.error for o in cancelled.outcomes] == [NOT_REQUESTED]
+    assert [o.error for o in stopped.outcomes] == [NOT_REQUESTED]
+
+
 async def test_a_tool_errors_hint_read_out_is_not_said() -> None:
     """The robot's error hints are for the model ("tell the user you do not know that place,
     name the known places and ask which one they mean"); a small model read one out."""

@@ -83,6 +83,15 @@ class Intent:
         return ClauseKind.QUESTION if self.clauses else None
 
     @property
+    def carries_on(self) -> bool:
+        """The words say to carry on as things are ("keep going", "don't stop") and ask nothing
+        new: a stop or cancel is the one thing not asked for."""
+        return not self.asks_action and any(
+            (c.kind is ClauseKind.NEGATED and _STOPPING.search(c.text))
+            or (c.kind is ClauseKind.STATEMENT and _CARRY_ON.match(_FILLER.sub("", c.text.strip())))
+            for c in self.clauses)
+
+    @property
     def refers(self) -> bool:
         """A request points at something by a word that names nothing ("go there", "call her")."""
         return any(c.kind is ClauseKind.REQUEST and _REFERENCE.search(c.text) for c in self.clauses)
@@ -99,6 +108,8 @@ class Intent:
 
 _TELL_ME = re.compile(
     r"(?:please\s+)?(?:(?:tell|let)\s+me|(?:try )?find out)\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
+_STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|around))\b", re.IGNORECASE)
+_CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person)\b", re.IGNORECASE)
 
 
@@ -122,8 +133,13 @@ _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|th
 _GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
 
 
+# "would you be a dear and pop into the kitchen": courtesy around one request
+_BE_A_DEAR = re.compile(r"\bbe (?:a (?:dear|love|darling|pet|sweetheart|star|treasure|gem)|an angel|good) and\s+",
+                        re.IGNORECASE)
+
+
 def split_clauses(text: str) -> list[str]:
-    text = _GO_AND.sub(r"\1 ", text.strip())
+    text = _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text.strip()))
     parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)]
     return [p for p in parts if p]
 
@@ -196,7 +212,7 @@ _IMPERATIVE = frozenset({
     "tell", "show", "check", "look", "list", "read", "cancel", "return", "park", "wait", "stay", "halt",
     "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
     "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
-    "join", "photograph", "snap", "capture", "shut", "try",
+    "join", "photograph", "snap", "capture", "shut", "try", "nip", "trot", "toddle", "scoot", "wander", "zip",
 })
 _WH = frozenset({
     "what", "where", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do", "does",
@@ -206,7 +222,8 @@ _WH = frozenset({
 
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
-_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b", re.IGNORECASE)
+_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$",
+                       re.IGNORECASE)
 _STOP = re.compile(r"\bstop\b", re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
@@ -237,7 +254,7 @@ def classify(clause: str) -> ClauseKind:
     lowered = text.lower()
     if not text:
         return ClauseKind.STATEMENT
-    if _STOP.search(lowered) and not re.search(r"\b(?:don'?t|do not|never) stop\b", lowered):
+    if _STOP.search(lowered) and not re.search(r"\b(?:don'?t|do not|never|no need to|needn'?t|not) stop\b", lowered):
         return ClauseKind.REQUEST  # a stop is always a request
     if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
         return ClauseKind.REQUEST
@@ -289,8 +306,11 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         if kind is ClauseKind.REQUEST and _FIRST.search(part.strip()):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
-        if _SEQUENCE.match(bare):
-            kind = ClauseKind.REQUEST  # "once you've checked your battery, …": that first
+        if sequence := _SEQUENCE.match(bare):
+            # "once you've checked your battery, …": that first, said as the request it is ("check
+            # your battery"), before what was asked already ("call Anna, but only after you've come in")
+            kind, part = ClauseKind.REQUEST, _base_form(sequence.group(1)) + bare[sequence.end():]
+            front = _first_asked(clauses)
         elif _CONDITION.match(bare):
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
             condition = condition or not _COURTESY.match(bare)
@@ -330,7 +350,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 # A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
 _WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
-                         r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no)"
+                         r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
+                         r"leave (?:it|that))"
                          r"\b[\s,]*)+$",
                          re.IGNORECASE)
 # A condition before a request: what to do if or when something happens, not now.
@@ -343,9 +364,26 @@ _COURTESY = re.compile(
     r"you (?:get|have) (?:a|the) (?:moment|minute|second|sec|chance)|it'?s (?:no|not too much) trouble|"
     r"it'?s (?:ok|okay|alright|all right))", re.IGNORECASE)
 # … these say what to do first ("once you've checked your battery, come here").
-_SEQUENCE = re.compile(r"^(?:once|after|when) you(?:'ve| have) \w+", re.IGNORECASE)
+_SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", re.IGNORECASE)
+_IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
+              "taken": "take", "driven": "drive", "done": "do", "found": "find", "told": "tell", "shown": "show",
+              "brought": "bring", "left": "leave", "run": "run", "come": "come", "put": "put", "shut": "shut"}
+
+
+def _base_form(participle: str) -> str:
+    """The verb a request would use: "gone" → "go", "checked" → "check", "parked" → "park"."""
+    word = participle.lower()
+    if word in _IRREGULAR:
+        return _IRREGULAR[word]
+    if word.endswith("ied"):
+        return word[:-3] + "y"
+    if word.endswith(("pped", "tted", "gged", "nned")):
+        return word[:-3]  # "popped" → "pop"
+    if word.endswith(("ved", "ged", "ced", "zed", "ated")) or (word.endswith("sed") and not word.endswith("ssed")):
+        return word[:-1]  # "charged" → "charge", "closed" → "close"
+    return word.removesuffix("ed")
 _TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
-                  r"dear|love|pet|darling|my dear|i mean)$", re.IGNORECASE)
+                  r"dear|love|pet|darling|my dear|i mean|mind)$", re.IGNORECASE)
 
 
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".

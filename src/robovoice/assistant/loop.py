@@ -353,11 +353,13 @@ class Assistant:
         await emit(called)
         voice = self.tools.voice()
         refused = refusal(intent, spec, request.arguments, said)
-        if refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel"):
+        if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
+                and not (intent is not None and intent.carries_on)):
             # the robot's stop or cancel when the words asked for nothing new ("Hold it! Stay
             # put!" read as talk, "never mind" during a drive): it runs unless the robot is known
             # to stand still, where it would do nothing the person asked for ("Wait, don't call
-            # anyone." answered "I am standing still.")
+            # anyone." answered "I am standing still."), or the words say to carry on ("keep
+            # going, don't stop")
             refused = refused if await self._standing_still(voice) else None
         if refused is not None:  # the user did not ask for this: it never reaches the robot
             outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)
