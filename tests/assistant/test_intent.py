@@ -148,6 +148,26 @@ def test_courtesy_around_a_request_and_an_only_after_step() -> None:
     assert read_request("Call Anna. Oh, leave it, she's out.").refusal is ClauseKind.NEGATED
 
 
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Go to the hallway, no, wait a sec, I mean the kitchen.", ("I mean the kitchen",)),
+    ("Reckon you could pop to the bedroom, pal?", ("Reckon you could pop to the bedroom",)),
+    ("I wondered, if it's no bother, whether you could come to the hallway.",
+     ("whether you could come to the hallway",)),
+    ("Go to the bedroom and when you get there, turn the projector off.",
+     ("Go to the bedroom", "turn the projector off")),  # on arrival: the order, not a condition
+    ("Call Anna and go to the kitchen, oh, scrap the kitchen.", ("Call Anna",)),
+])
+def test_more_everyday_ways_of_asking_and_correcting(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+def test_the_doctor_said_before_is_who_him_is() -> None:
+    intent = read_request("The doctor rang earlier, can you call him back?")
+    assert refusal(intent, CALL, {"contact": "Dr. Weber"}) is None
+    refused = refusal(intent, CALL, {"contact": "Anna"})
+    assert refused is not None and refused["details"]["reason"] == "unclear"
+
+
 def test_the_persons_own_plan_after_a_request_is_its_reason() -> None:
     reason = read_request("Give Ben a ring, I want to show him the garden.")
     assert reason.steps == ("Give Ben a ring",)

@@ -79,6 +79,13 @@ _GENERIC_NAME_WORDS = frozenset({"set", "get", "start", "end", "to", "power", "s
 _BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)
 
 
+_SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus"}
+
+
+def _usual(names: Collection[str]) -> set[str]:
+    return {_SHORT_FORMS.get(w, w) for w in names}
+
+
 def _names_only_what_was_declined(name: str, intent: Intent) -> bool:
     """The tool's own name names a thing the user declined and no request mentions ("leave
     the projector alone" → set_projector_power), which its arguments (a yes/no) cannot show.
@@ -105,8 +112,8 @@ def refusal(
             why = ClauseKind.NEGATED.value
         elif _names_only_what_was_declined(name, intent):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
-        elif named and intent.refers and not set(named) <= (set(said) | set(intent.words())):
-            why = UNCLEAR  # "call her": nobody in the conversation is her
+        elif named and intent.refers and not _usual(named) & _usual([*said, *intent.words()]):
+            why = UNCLEAR  # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber)
         else:
             return None
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)

@@ -148,7 +148,7 @@ def split_clauses(text: str) -> list[str]:
 
 _FILLER = re.compile(
     r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
-    r"next|finally|just|"
+    r"next|finally|just|i mean|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
     r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
     re.IGNORECASE,
 )
@@ -202,7 +202,8 @@ _POLITE = re.compile(
     r"^i(?:'d| would) like (?:you|to)\b|^i (?:want|need|wish)\b|^i'd love\b|^i(?:'d| would) love\b|"
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
-    r"^i(?:'m| am| was)? wonder(?:ing)? if you\b|^do you think you could\b|^if you (?:could|would)\b|"
+    r"^i(?:'m| am| was)? wonder(?:ing|ed)? (?:if|whether) you\b|^do you think you could\b|^if you (?:could|would)\b|"
+    r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
     r"^i(?:'d| would) (?:be grateful|appreciate it) if you\b",
     re.IGNORECASE,
 )
@@ -311,6 +312,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
             kind, part = ClauseKind.REQUEST, _base_form(sequence.group(1)) + bare[sequence.end():]
             front = _first_asked(clauses)
+        elif _ON_ARRIVAL.match(bare):
+            clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs
+            continue
         elif _CONDITION.match(bare):
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
             condition = condition or not _COURTESY.match(bare)
@@ -361,8 +365,10 @@ _CONDITION = re.compile(  # (not a question: "when will you be charged?")
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 _COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) ready|you (?:don'?t|do not|wouldn'?t) mind|you (?:can|could|would|please)\b|"
-    r"you (?:get|have) (?:a|the) (?:moment|minute|second|sec|chance)|it'?s (?:no|not too much) trouble|"
+    r"you (?:get|have) (?:a|the) (?:moment|minute|second|sec|chance)|it'?s (?:no|not too much) (?:trouble|bother)|"
     r"it'?s (?:ok|okay|alright|all right))", re.IGNORECASE)
+# … and this is the order of steps, not a condition ("go to the door and when you get there, …").
+_ON_ARRIVAL = re.compile(r"^when you(?:'re| are)? (?:get |arrive|there|in there|back)", re.IGNORECASE)
 # … these say what to do first ("once you've checked your battery, come here").
 _SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", re.IGNORECASE)
 _IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
@@ -383,7 +389,7 @@ def _base_form(participle: str) -> str:
         return word[:-1]  # "charged" → "charge", "closed" → "close"
     return word.removesuffix("ed")
 _TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
-                  r"dear|love|pet|darling|my dear|i mean|mind)$", re.IGNORECASE)
+                  r"dear|love|pet|darling|my dear|i mean|mind|mate|pal)$", re.IGNORECASE)
 
 
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
@@ -396,7 +402,8 @@ _OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:really )?(?:want|need|wish|like
 _ASKING_VERBS = frozenset({"talk", "speak", "call", "ring", "phone", "video", "chat", "see", "know", "check", "hear",
                            "find"})
 # Taking back one thing by its name: "not Ben", "skip the kitchen", "leave Clara", "forget about the call".
-_NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch)\s+((?:\w+\s*){1,3})$", re.IGNORECASE)
+_NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|cancel)\s+((?:\w+\s*){1,3})$",
+                       re.IGNORECASE)
 _NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
 
 
