@@ -28,6 +28,18 @@ import re
 from dataclasses import dataclass
 from enum import Enum
 
+from robovoice.assistant.lexicon import (
+    ASKING_VERBS,
+    FILLER,
+    IMPERATIVES,
+    LATER,
+    NOT_GENERIC,
+    NOT_NAMES,
+    QUESTION_WORDS,
+    TAG,
+    base_form,
+)
+
 
 class ClauseKind(Enum):
     REQUEST = "request"
@@ -69,7 +81,7 @@ class Intent:
     def lookups(self) -> tuple[bool, ...]:
         """For each of `steps`: whether it only asks to be told something ("where are you",
         "tell me your battery level"), which a look-up answers and no action may."""
-        return tuple(c.kind is ClauseKind.QUESTION or bool(_TELL_ME.match(_FILLER.sub("", c.text.strip())))
+        return tuple(c.kind is ClauseKind.QUESTION or bool(_TELL_ME.match(FILLER.sub("", c.text.strip())))
                      for c in self._asked)
 
     @property
@@ -88,7 +100,7 @@ class Intent:
         new: a stop or cancel is the one thing not asked for."""
         return not self.asks_action and any(
             (c.kind is ClauseKind.NEGATED and _STOPPING.search(c.text))
-            or (c.kind is ClauseKind.STATEMENT and _CARRY_ON.match(_FILLER.sub("", c.text.strip())))
+            or (c.kind is ClauseKind.STATEMENT and _CARRY_ON.match(FILLER.sub("", c.text.strip())))
             for c in self.clauses)
 
     @property
@@ -146,12 +158,6 @@ def split_clauses(text: str) -> list[str]:
 
 # --- classifying ----------------------------------------------------------------------------
 
-_FILLER = re.compile(
-    r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
-    r"next|finally|just|i mean|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
-    r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
-    re.IGNORECASE,
-)
 _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
@@ -159,11 +165,6 @@ _NEGATION = re.compile(
     r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace)|"
     r"let (?:it|that|them) be|don'?t touch)\b"
     r"|\bnot\s*$|^not\b",  # "…, not Ben"
-    re.IGNORECASE,
-)
-_LATER = re.compile(
-    r"\b(?:later|tomorrow|tonight|this evening|next week|one day|some day|someday|in an? (?:hour|minute|while)|"
-    r"in \w+ (?:hours|minutes)|after (?:lunch|dinner|breakfast)|until)\b",
     re.IGNORECASE,
 )
 _ABILITY = re.compile(
@@ -186,16 +187,11 @@ _NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)")
 # … or a bare plural with no article or owner before it ("can you send text messages?",
 # "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
 _CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IGNORECASE)
-_NOT_GENERIC = frozenset({
-    "the", "my", "your", "his", "her", "their", "our", "this", "that", "these", "those", "to", "into", "in", "on",
-    "at", "for", "us", "is", "was", "has", "does", "yes", "please", "thanks", "as", "its", "it's", "hers",
-    "yours", "ours", "theirs", "anywhere", "always", "sometimes",
-})
 
 
 def _asks_about_kinds(text: str) -> bool:
     match = _CAN_PLURAL.match(text.rstrip(" ?.!"))
-    return match is not None and not set(words(match.group(0))[3:]) & _NOT_GENERIC
+    return match is not None and not set(words(match.group(0))[3:]) & NOT_GENERIC
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
@@ -207,18 +203,6 @@ _POLITE = re.compile(
     r"^i(?:'d| would) (?:be grateful|appreciate it) if you\b",
     re.IGNORECASE,
 )
-_IMPERATIVE = frozenset({
-    "go", "drive", "come", "move", "head", "roll", "walk", "make", "take", "bring", "turn", "switch", "put",
-    "power", "start", "stop", "end", "hang", "call", "ring", "phone", "dial", "video", "connect", "get",
-    "tell", "show", "check", "look", "list", "read", "cancel", "return", "park", "wait", "stay", "halt",
-    "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
-    "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
-    "join", "photograph", "snap", "capture", "shut", "try", "nip", "trot", "toddle", "scoot", "wander", "zip",
-})
-_WH = frozenset({
-    "what", "where", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do", "does",
-    "did", "have", "has", "was", "were",
-})
 
 
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
@@ -251,7 +235,7 @@ def _unfinished(clause: str) -> bool:
 
 
 def classify(clause: str) -> ClauseKind:
-    text = _FILLER.sub("", clause.strip()).strip()
+    text = FILLER.sub("", clause.strip()).strip()
     lowered = text.lower()
     if not text:
         return ClauseKind.STATEMENT
@@ -259,7 +243,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST  # a stop is always a request
     if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
         return ClauseKind.REQUEST
-    if (_CALL_OFF.search(lowered) or _NEGATION.search(lowered) or _LATER.search(lowered)
+    if (_CALL_OFF.search(lowered) or _NEGATION.search(lowered) or LATER.search(lowered)
             or re.match(r"^no\b", lowered)):
         return ClauseKind.NEGATED
     if _ABILITY.search(lowered) or (_CAN_GENERIC.search(lowered) and not _NAMED.search(text)) \
@@ -268,13 +252,13 @@ def classify(clause: str) -> ClauseKind:
     if _POLITE.search(lowered):
         return ClauseKind.REQUEST
     first = words(lowered)[0]
-    if first == "do" and len(words(lowered)) > 1 and words(lowered)[1] in _IMPERATIVE:
+    if first == "do" and len(words(lowered)) > 1 and words(lowered)[1] in IMPERATIVES:
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
-    if first in _IMPERATIVE:
+    if first in IMPERATIVES:
         return ClauseKind.REQUEST
-    if first.split("'")[0] in _WH:  # also "what's", "where's", "how's"
+    if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
         return ClauseKind.QUESTION
     terse = words(lowered)
     if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now"):
@@ -292,9 +276,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     undone: list[int] = []  # the requests a bare "no" just took back: a "not Ben" after it says which
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
     for part in split_clauses(text):
-        if _TAG.match(part.strip()):
+        if TAG.match(part.strip()):
             continue  # "…, would you?", "…, dear": part of the clause before it
-        bare = _FILLER.sub("", part.strip()).strip()
+        bare = FILLER.sub("", part.strip()).strip()
         kind = classify(part)
         if _BEFORE_THAT.match(bare):
             front = _first_asked(clauses)
@@ -310,7 +294,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if sequence := _SEQUENCE.match(bare):
             # "once you've checked your battery, …": that first, said as the request it is ("check
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
-            kind, part = ClauseKind.REQUEST, _base_form(sequence.group(1)) + bare[sequence.end():]
+            kind, part = ClauseKind.REQUEST, base_form(sequence.group(1)) + bare[sequence.end():]
             front = _first_asked(clauses)
         elif _ON_ARRIVAL.match(bare):
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs
@@ -322,7 +306,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
-        previous = next((c for c in reversed(clauses) if _FILLER.sub("", c.text).strip()), None)
+        previous = next((c for c in reversed(clauses) if FILLER.sub("", c.text).strip()), None)
         if kind is ClauseKind.STATEMENT and _fragment(part) and (
                 corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)):
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
@@ -371,26 +355,6 @@ _COURTESY = re.compile(
 _ON_ARRIVAL = re.compile(r"^when you(?:'re| are)? (?:get |arrive|there|in there|back)", re.IGNORECASE)
 # … these say what to do first ("once you've checked your battery, come here").
 _SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", re.IGNORECASE)
-_IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
-              "taken": "take", "driven": "drive", "done": "do", "found": "find", "told": "tell", "shown": "show",
-              "brought": "bring", "left": "leave", "run": "run", "come": "come", "put": "put", "shut": "shut"}
-
-
-def _base_form(participle: str) -> str:
-    """The verb a request would use: "gone" → "go", "checked" → "check", "parked" → "park"."""
-    word = participle.lower()
-    if word in _IRREGULAR:
-        return _IRREGULAR[word]
-    if word.endswith("ied"):
-        return word[:-3] + "y"
-    if word.endswith(("pped", "tted", "gged", "nned")):
-        return word[:-3]  # "popped" → "pop"
-    if word.endswith(("ved", "ged", "ced", "zed", "ated")) or (word.endswith("sed") and not word.endswith("ssed")):
-        return word[:-1]  # "charged" → "charge", "closed" → "close"
-    return word.removesuffix("ed")
-_TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
-                  r"dear|love|pet|darling|my dear|i mean|mind|mate|pal)$", re.IGNORECASE)
-
 
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
@@ -399,12 +363,9 @@ _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
 # unless it asks the robot for a call or to find something out ("…, I'd like to talk to Anna")
 _OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:really )?(?:want|need|wish|like|have|got) to (\w+)", re.IGNORECASE)
-_ASKING_VERBS = frozenset({"talk", "speak", "call", "ring", "phone", "video", "chat", "see", "know", "check", "hear",
-                           "find"})
 # Taking back one thing by its name: "not Ben", "skip the kitchen", "leave Clara", "forget about the call".
 _NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|cancel)\s+((?:\w+\s*){1,3})$",
                        re.IGNORECASE)
-_NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
 
 
 def _first_asked(clauses: list[Clause]) -> int | None:
@@ -413,7 +374,7 @@ def _first_asked(clauses: list[Clause]) -> int | None:
 
 def _reason(bare: str, clauses: list[Clause]) -> bool:
     plan = _OWN_PLAN.match(bare)
-    return (plan is not None and plan.group(1).lower() not in _ASKING_VERBS
+    return (plan is not None and plan.group(1).lower() not in ASKING_VERBS
             and any(c.kind is ClauseKind.REQUEST for c in clauses))
 
 
@@ -423,7 +384,7 @@ def _named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int]
     match = _NOT_THAT.match(bare)
     if match is None:
         return None
-    named = set(words(match.group(1))) - _NOT_NAMES
+    named = set(words(match.group(1))) - NOT_NAMES
     hit = {i for i, c in enumerate(clauses)
            if (c.kind is ClauseKind.REQUEST or i in undone) and named & set(words(c.text))}
     return hit or None
@@ -431,7 +392,7 @@ def _named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int]
 
 def _fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben"."""
-    text = _FILLER.sub("", part.strip()).strip().lower()
+    text = FILLER.sub("", part.strip()).strip().lower()
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
     return bool(re.match(r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?"
                          r"\w+(?: \w+)?$", text))

@@ -187,8 +187,7 @@ class Assistant:
             if text:
                 replies.append(text)
             if guessed and not requested and not retried and any(s.read_only for s in specs) and not looked_up:
-                # a figure nothing gave the model (held back, not said): it answered from the tool's
-                # description instead of calling it; asked once more, with only the look-ups offered
+                # a figure nobody gave the model (held back): asked once more, offered only the look-ups
                 retried = lookup_only = True
                 messages.extend([ChatMessage("assistant", text)] if text else [])
                 messages.append(ChatMessage("user", GUESSED_HINT))

@@ -1,0 +1,67 @@
+"""The words `intent` reads requests with: verbs that start a request, question words, words that
+make an object specific, the verbs a person's own plan may ask the robot for, and the base form
+of a participle ("once you've gone to the bedroom" is "go to the bedroom")."""
+
+from __future__ import annotations
+
+import re
+
+# Said before or around a request without changing it.
+FILLER = re.compile(
+    r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
+    r"next|finally|just|i mean|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
+    r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
+    re.IGNORECASE,
+)
+TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
+             r"dear|love|pet|darling|my dear|i mean|mind|mate|pal)$", re.IGNORECASE)
+
+# Putting a request off.
+LATER = re.compile(
+    r"\b(?:later|tomorrow|tonight|this evening|next week|one day|some day|someday|in an? (?:hour|minute|while)|"
+    r"in \w+ (?:hours|minutes)|after (?:lunch|dinner|breakfast)|until)\b",
+    re.IGNORECASE,
+)
+
+IMPERATIVES = frozenset({
+    "go", "drive", "come", "move", "head", "roll", "walk", "make", "take", "bring", "turn", "switch", "put",
+    "power", "start", "stop", "end", "hang", "call", "ring", "phone", "dial", "video", "connect", "get",
+    "tell", "show", "check", "look", "list", "read", "cancel", "return", "park", "wait", "stay", "halt",
+    "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
+    "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
+    "join", "photograph", "snap", "capture", "shut", "try", "nip", "trot", "toddle", "scoot", "wander", "zip",
+})
+
+QUESTION_WORDS = frozenset({
+    "what", "where", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do", "does",
+    "did", "have", "has", "was", "were",
+})
+
+NOT_GENERIC = frozenset({
+    "the", "my", "your", "his", "her", "their", "our", "this", "that", "these", "those", "to", "into", "in", "on",
+    "at", "for", "us", "is", "was", "has", "does", "yes", "please", "thanks", "as", "its", "it's", "hers",
+    "yours", "ours", "theirs", "anywhere", "always", "sometimes",
+})
+
+ASKING_VERBS = frozenset({"talk", "speak", "call", "ring", "phone", "video", "chat", "see", "know", "check", "hear",
+                           "find"})
+
+NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
+
+_IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
+              "taken": "take", "driven": "drive", "done": "do", "found": "find", "told": "tell", "shown": "show",
+              "brought": "bring", "left": "leave", "run": "run", "come": "come", "put": "put", "shut": "shut"}
+
+
+def base_form(participle: str) -> str:
+    """The verb a request would use: "gone" → "go", "checked" → "check", "parked" → "park"."""
+    word = participle.lower()
+    if word in _IRREGULAR:
+        return _IRREGULAR[word]
+    if word.endswith("ied"):
+        return word[:-3] + "y"
+    if word.endswith(("pped", "tted", "gged", "nned")):
+        return word[:-3]  # "popped" → "pop"
+    if word.endswith(("ved", "ged", "ced", "zed", "ated")) or (word.endswith("sed") and not word.endswith("ssed")):
+        return word[:-1]  # "charged" → "charge", "closed" → "close"
+    return word.removesuffix("ed")
