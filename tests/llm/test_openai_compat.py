@@ -120,7 +120,8 @@ async def test_unparsable_arguments_are_kept_raw_with_an_error(tools: list[ToolS
 @pytest.mark.parametrize("status", [500, 400])
 async def test_http_error_body_becomes_llm_error_with_server_message(tools: list[ToolSpec], status: int) -> None:
     async with FakeOpenAIServer([ErrorReply(status, "model 'x' does not support tools")]) as srv:
-        llm = backend(srv)
+        # roomy deadlines: this is about the error's body (FAST's 0.2 s missed once on a busy CI run)
+        llm = OpenAICompatBackend(srv.base_url, srv.model, deadlines=Deadlines(connect_s=10, first_token_s=10))
         with pytest.raises(LLMHTTPError) as info:
             await collect(llm.stream(USER, tools))
         await llm.aclose()
