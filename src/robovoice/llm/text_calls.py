@@ -146,18 +146,9 @@ def _parse_calls(text: str, names: frozenset[str]) -> tuple[str, list[TextCall]]
         return ("", calls) if calls else (text, [])
     if stripped.startswith(FUNCTIONS_PREFIX):
         return _functions(text)
-    if tag := _OPENING_TAG.match(stripped):
-        return _wrapped(stripped, tag, names, text)
+    if tag := _OPENING_TAG.match(stripped):  # ``<tools>{…}</tools>``: `_json_calls` stops at the JSON's end
+        stripped = stripped[tag.end() :].lstrip()
     calls = list(_json_calls(stripped, names))  # a bare JSON answer: only a call of an offered tool
-    return ("", calls) if calls else (text, [])
-
-
-def _wrapped(stripped: str, tag: re.Match[str], names: frozenset[str], text: str) -> tuple[str, list[TextCall]]:
-    """A call of an offered tool wrapped in a tag (``<tools>{…}</tools>``); what follows the tag is
-    dropped, it is the model writing a result it has not seen. Anything else stays text."""
-    inner = stripped[tag.end() :]
-    close = inner.find("</" if tag.group(1) else "```")  # its closing tag, maybe cut off ("</to")
-    calls = list(_json_calls((inner[:close] if close >= 0 else inner).strip(), names))
     return ("", calls) if calls else (text, [])
 
 
