@@ -166,3 +166,22 @@ async def test_a_tool_errors_hint_read_out_is_not_said() -> None:
         "Go to the garage.")
     assert [o.error for o in result.outcomes] == ["unknown_target"]
     assert result.reply == "I do not know that place."
+
+
+async def test_a_tool_beside_a_request_for_another_is_refused_and_the_model_tries_again() -> None:
+    """"go and get yourself plugged in" and the model switches the projector on: the call does
+    not fit the request (`fit`), never reaches the robot, and the model is told what fits."""
+    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+        [call("set_projector_power", on=True), call("return_to_dock"), TextReply("Off I go.")]
+    ) as server:
+        backend = OpenAICompatBackend(server.base_url, server.model)
+        try:
+            result = await Assistant(backend, robot.tools).turn("You look worn out, go and get yourself plugged in.")
+        finally:
+            await backend.aclose()
+        assert robot.sim is not None and not robot.sim.state.projector_on
+        assert robot.sim.state.nearest_place == "charging dock"
+    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+        ("set_projector_power", NOT_REQUESTED), ("return_to_dock", None)]
+    tool_message = server.requests[1].messages[-1]
+    assert tool_message["role"] == "tool" and "or return_to_dock." in tool_message["content"]

@@ -19,6 +19,10 @@ async def test_voice_sections_reach_the_client_in_the_tools_meta() -> None:
         meta = {t.name: (t.meta or {}).get(META_KEY) for t in listing.tools}
         await robot.tools.specs()
         voice = robot.tools.voice()
+    words = {name: section.pop("words") for name, section in meta.items() if section and "words" in section}
+    assert set(words) == {"navigate_to", "return_to_dock", "cancel_navigation", "stop_robot",
+                          "set_projector_power", "start_video_call", "end_video_call"}  # the actuation tools
+    assert "ring" in words["start_video_call"] and tuple(words["start_video_call"]) == voice["start_video_call"].words
     assert meta["navigate_to"] == {"role": "motion", "say": {"start": "On my way to the {target}.",
                                                              "progress": "Still on my way, {message}.",
                                                              "success": "I am at the {arrived} now."}}

@@ -8,7 +8,8 @@ for no action at all (a negated or postponed request, an ability question, talk 
 mentions a place or a person, a request cut off before its object), or when its arguments
 name only what the user said *not* to do ("don't call Anna, call Ben": a call to Anna), or
 when the request points at something nobody named ("go there", "call her") and the model
-filled in a place or a person the conversation never mentioned. The model gets a structured
+filled in a place or a person the conversation never mentioned, or when the tool does not fit
+what was asked (`fit`: "plug yourself in" and the projector). The model gets a structured
 ``not_requested`` tool error whose hint tells it how to answer instead, so the turn still
 ends with words the person understands (or, when it has none, `said_after`'s).
 
@@ -22,14 +23,18 @@ import re
 from collections.abc import Collection, Mapping
 from typing import Any
 
+from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, usual
 from robovoice.assistant.intent import ClauseKind, Intent, words
 from robovoice.llm.base import ToolSpec
+from robovoice.manifest.voice import VoiceDecl
 
 log = logging.getLogger(__name__)
 
 NOT_REQUESTED = "not_requested"
 
 UNCLEAR = "unclear"  # a reference the conversation does not resolve: "go there", "call her"
+
+OTHER = "other_tool"  # a request stands, but not for this tool: "plug yourself in" and the projector
 
 _HINTS = {
     ClauseKind.NEGATED.value: "The user asked you not to do this now. Do not do it. Acknowledge in one short "
@@ -42,6 +47,8 @@ _HINTS = {
     ClauseKind.UNFINISHED.value: "The user stopped before saying all of it. Do not guess: ask them in one short "
                                  "question to say it again.",
     UNCLEAR: "The user did not say which one they mean. Do not guess: ask them in one short question.",
+    OTHER: "The user did not ask for this tool. Do only what they asked; if you are not sure what that is, "
+           "ask them in one short question.",
 }
 
 
@@ -55,6 +62,7 @@ _AFTER = {
     ClauseKind.ABILITY.value: "Yes, I can do that when you ask me to.",
     ClauseKind.UNFINISHED.value: "Sorry, I didn't catch all of that. Could you say it again?",
     UNCLEAR: "Which one do you mean?",
+    OTHER: "Sorry, I'm not sure what you'd like me to do. Could you say it another way?",
 }
 
 
@@ -74,16 +82,7 @@ def model_only_texts() -> tuple[str, ...]:
     return tuple(_HINTS.values())
 
 
-# Words of a tool's name that say nothing about what it acts on.
-_GENERIC_NAME_WORDS = frozenset({"set", "get", "start", "end", "to", "power", "state", "robot", "the", "on", "off"})
 _BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)
-
-
-_SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus"}
-
-
-def _usual(names: Collection[str]) -> set[str]:
-    return {_SHORT_FORMS.get(w, w) for w in names}
 
 
 def _names_only_what_was_declined(name: str, intent: Intent) -> bool:
@@ -92,18 +91,21 @@ def _names_only_what_was_declined(name: str, intent: Intent) -> bool:
     A request that refers back ("don't switch it off, switch it on") may mean the same thing."""
     if any(c.kind is ClauseKind.REQUEST and _BACK_REFERENCE.search(c.text) for c in intent.clauses):
         return False
-    subject = set(words(name.replace("_", " "))) - _GENERIC_NAME_WORDS
+    subject = set(words(name.replace("_", " "))) - GENERIC_NAME_WORDS
     return bool(subject & intent.negated_words())
 
 
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
+    voice: Mapping[str, VoiceDecl] | None = None,
 ) -> dict[str, Any] | None:
     """The ``{error, message, hint, details}`` body that refuses this call, or None to let it run.
-    `said`: the words of the conversation so far (what a "there" or a "her" can refer to)."""
+    `said`: the words of the conversation so far (what a "there" or a "her" can refer to);
+    `voice`: the tools' voice sections (the words a request for each uses, `fit`)."""
     if intent is None or (spec is not None and spec.read_only):
         return None
     name = spec.name if spec is not None else "?"
+    declared = {tool: section.words for tool, section in (voice or {}).items()}
     kind = intent.refusal
     why = kind.value if kind is not None else None
     if why is None:
@@ -112,14 +114,18 @@ def refusal(
             why = ClauseKind.NEGATED.value
         elif _names_only_what_was_declined(name, intent):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
-        elif named and intent.refers and not _usual(named) & _usual([*said, *intent.words()]):
+        elif named and intent.refers and not usual(named) & usual([*said, *intent.words()]):
             why = UNCLEAR  # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber)
+        elif not fits(intent, name, declared.get(name, ()), arguments, said):
+            why = OTHER  # "plug yourself in" and the projector
         else:
             return None
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
+    others = fitting_tools(intent, declared, name) if why == OTHER else []
+    hint = _HINTS[why] + (f" What they asked for fits {' or '.join(others)}." if others else "")
     return {
         "error": NOT_REQUESTED,
         "message": f"not done: the user did not ask for {name} now ({why})",
-        "hint": _HINTS[why],
+        "hint": hint,
         "details": {"tool": name, "reason": why},
     }

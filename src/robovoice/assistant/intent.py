@@ -61,6 +61,7 @@ class Intent:
     """An utterance read clause by clause."""
 
     clauses: tuple[Clause, ...]
+    answering: bool = False  # the words answer the robot's own question
 
     @property
     def asks_action(self) -> bool:
@@ -333,7 +334,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         clauses.append(Clause(part, kind))
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
-    return Intent(tuple(clauses))
+    return Intent(tuple(clauses), answering)
 
 
 # A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.

@@ -9,7 +9,7 @@ import re
 # Said before or around a request without changing it.
 FILLER = re.compile(
     r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
-    r"next|finally|just|i mean|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
+    r"next|finally|just|off you|i mean|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
     r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
     re.IGNORECASE,
 )
@@ -29,7 +29,7 @@ IMPERATIVES = frozenset({
     "tell", "show", "check", "look", "list", "read", "cancel", "return", "park", "wait", "stay", "halt",
     "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
     "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
-    "join", "photograph", "snap", "capture", "shut", "try", "nip", "trot", "toddle", "scoot", "wander", "zip",
+    "join", "photograph", "snap", "capture", "shut", "try", "nip", "plug", "trot", "toddle", "scoot", "wander", "zip",
 })
 
 QUESTION_WORDS = frozenset({

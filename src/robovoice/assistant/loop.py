@@ -351,7 +351,7 @@ class Assistant:
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
         voice = self.tools.voice()
-        refused = refusal(intent, spec, request.arguments, said)
+        refused = refusal(intent, spec, request.arguments, said, voice)
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and not (intent is not None and intent.carries_on)):
             # the robot's stop or cancel when the words asked for nothing new ("Hold it! Stay

@@ -129,10 +129,15 @@ class VoiceDecl(_Strict):
                                    "(snapshots): its value says whether the robot moves (\"moving\": "
                                    "true|false)")
     say: VoicePhrases = Field(default_factory=VoicePhrases, description="phrases spoken about the tool")
+    words: tuple[str, ...] = Field(default=(), description="the words (or short phrases) a request for this "
+                                   "tool uses besides its name and its arguments' values, e.g. [\"call\", "
+                                   "\"ring\", \"phone\"]: a call no request clause fits is refused "
+                                   "(docs/judgement.md); none declared: not checked")
 
     def meta(self) -> dict[str, Any]:
         """The section as it goes into the MCP tool's ``_meta`` (under `META_KEY`)."""
-        return self.model_dump(mode="json", exclude_none=True, exclude_defaults=False)
+        dumped = self.model_dump(mode="json", exclude_none=True, exclude_defaults=False)
+        return {key: value for key, value in dumped.items() if key != "words" or value}
 
 
 def tools_with_role(sections: Mapping[str, VoiceDecl], role: VoiceRole) -> list[str]:

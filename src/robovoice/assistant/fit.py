@@ -1,0 +1,92 @@
+"""Does an action fit what was asked? The second half of the check before acting.
+
+`gate` asks *whether* the person asked for an action now; this asks *which*. A small model
+beside a real request sometimes picks a tool nobody asked for: "go and get yourself charged
+up" switched the projector on, "go to the front door and check who has come" called Anna.
+A manifest tool may declare the words a request for it uses (``voice.words``: "call",
+"ring", "hang up"); the call then fits only when one of the request's clauses says one of
+those words, a word of the tool's own name, or a word of one of the call's text arguments
+("Anna", "kitchen"). Words are compared by their stems ("charged" is "charge", "rings" is
+"ring"); a declared phrase ("hang up") must appear in that order.
+
+A tool that declares no words is not checked: nothing is known about how people ask for it.
+An answer to the robot's own question ("Shall I call Anna?" - "Yes, please.") is read with
+the conversation before it, which says what the "yes" is for.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Collection, Iterable, Mapping, Sequence
+from typing import Any
+
+from robovoice.assistant.intent import ClauseKind, Intent, words
+
+_SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus"}
+_BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
+
+
+def usual(names: Iterable[str]) -> set[str]:
+    """The words as said aloud: "dr" is "doctor"."""
+    return {_SHORT_FORMS.get(w, w) for w in names}
+
+# Words of a tool's name that say nothing about what it acts on.
+GENERIC_NAME_WORDS = frozenset({"set", "get", "start", "end", "to", "power", "state", "robot", "the", "on", "off"})
+
+_SUFFIXES = ("ing", "ed", "es", "er", "s")
+
+
+def stem(word: str) -> str:
+    """A word without its ending: "charging", "charged", "charge" → "charg"; "plugged" → "plug"."""
+    word = word.lower().removesuffix("'s").replace("'", "")
+    for suffix in _SUFFIXES:
+        if word.endswith(suffix) and len(word) - len(suffix) >= 2:
+            word = word[: -len(suffix)]
+            if len(word) > 2 and word[-1] == word[-2] and word[-1] not in "lsz":
+                word = word[:-1]  # "plugg" → "plug", but "call" stays
+            break
+    return word.removesuffix("e") if len(word) > 2 else word
+
+
+def _stems(text: str) -> list[str]:
+    return [stem(w) for w in words(text)]
+
+
+def _says(clause: Sequence[str], phrase: Sequence[str]) -> bool:
+    """The clause's stems contain the phrase's, in order and next to each other."""
+    n = len(phrase)
+    return n > 0 and any(list(clause[i:i + n]) == list(phrase) for i in range(len(clause) - n + 1))
+
+
+def vocabulary(name: str, declared: Iterable[str], arguments: Mapping[str, Any]) -> list[list[str]]:
+    """The phrases (as stems) any of which makes a request clause fit this call."""
+    own = [w for w in words(name.replace("_", " ")) if w not in GENERIC_NAME_WORDS]
+    values = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
+    said_aloud = sorted(usual(values) - set(values))  # "Dr. Weber": "doctor"
+    return [[stem(w)] for w in own + values + said_aloud] + [_stems(phrase) for phrase in declared]
+
+
+def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
+    requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
+    clauses = [_stems(c.text) for c in requests]
+    if any(_BACK_REFERENCE & set(words(c.text)) for c in requests):
+        # "the thing that throws pictures on the wall... turn it off": what "it" is was said before
+        clauses += [_stems(c.text) for c in intent.clauses]
+    if intent.answering:
+        clauses.append([stem(w) for w in said])  # "Yes, please." to "Shall I call Anna?"
+    return clauses
+
+
+def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[str, Any],
+         said: Collection[str] = ()) -> bool:
+    """Some request clause says a word of this call's vocabulary (True when none is declared)."""
+    if not declared:
+        return True
+    phrases = vocabulary(name, declared, arguments)
+    return any(_says(clause, phrase) for clause in _request_stems(intent, said) for phrase in phrases)
+
+
+def fitting_tools(intent: Intent, declared: Mapping[str, Sequence[str]], but: str) -> list[str]:
+    """The tools other than `but` whose declared words (or name) a request clause says, sorted:
+    what the person may have meant instead."""
+    return sorted(name for name, phrases in declared.items()
+                  if name != but and phrases and fits(intent, name, phrases, {}))

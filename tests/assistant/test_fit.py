@@ -1,0 +1,94 @@
+"""Does an action fit what was asked (`assistant.fit`), with the words the sim robot's own
+manifests declare: plain code, no model. The utterances are made up here, not eval cases."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from robovoice.assistant.fit import fits, fitting_tools, stem
+from robovoice.assistant.gate import NOT_REQUESTED, OTHER, refusal
+from robovoice.assistant.intent import read_request
+from robovoice.llm.base import ToolSpec
+from robovoice.manifest.voice import VoiceDecl
+
+MANIFESTS = Path(__file__).parents[2] / "src" / "robovoice" / "sim" / "manifests"
+
+
+def _sim_voice() -> dict[str, VoiceDecl]:
+    sections = {}
+    for path in sorted(MANIFESTS.glob("*/mcp.json")):
+        for tool in json.loads(path.read_text(encoding="utf-8")).get("tools", []):
+            if "voice" in tool:
+                sections[tool["name"]] = VoiceDecl.model_validate(tool["voice"])
+    return sections
+
+
+VOICE = _sim_voice()
+WORDS = {name: section.words for name, section in VOICE.items()}
+
+
+@pytest.mark.parametrize(("word", "same"), [
+    ("charged", "charge"), ("charging", "charger"), ("plugged", "plug"), ("calling", "call"), ("rings", "ring"),
+    ("going", "go"), ("phoned", "phone"), ("stopped", "stop"), ("docking", "dock"),
+])
+def test_a_words_forms_share_its_stem(word: str, same: str) -> None:
+    assert stem(word) == stem(same)
+
+
+@pytest.mark.parametrize(("word", "other"), [("call", "cal"), ("go", "good"), ("ring", "bring"), ("end", "ends up")])
+def test_different_words_keep_different_stems(word: str, other: str) -> None:
+    assert stem(word) != stem(other)
+
+
+@pytest.mark.parametrize(("text", "tool", "arguments"), [
+    ("Go and get yourself plugged in, it's late.", "return_to_dock", {}),
+    ("Give my daughter a ring, would you?", "start_video_call", {"contact": "Anna"}),
+    ("Put the doctor on, please.", "start_video_call", {"contact": "Dr. Weber"}),  # the argument, said aloud
+    ("Could you nip through to the bedroom?", "navigate_to", {"target": "bedroom"}),
+    ("That light on the wall is too bright, switch it off.", "set_projector_power", {"on": False}),  # "it"
+    ("Right, we're done, hang up now.", "end_video_call", {}),
+])
+def test_a_request_in_everyday_words_fits_its_tool(text: str, tool: str, arguments: dict[str, object]) -> None:
+    assert fits(read_request(text), tool, WORDS[tool], arguments)
+
+
+@pytest.mark.parametrize(("text", "tool", "arguments", "meant"), [
+    ("Go and get yourself plugged in, it's late.", "set_projector_power", {"on": True},
+     ["navigate_to", "return_to_dock"]),
+    ("Pop to the porch and see who knocked.", "start_video_call", {"contact": "Anna"}, ["navigate_to"]),
+    ("Tell me your battery, then wander to the bathroom.", "return_to_dock", {}, ["navigate_to"]),
+    ("Switch the projector on.", "start_video_call", {"contact": "Ben"}, ["set_projector_power"]),
+])
+def test_a_tool_beside_a_request_for_another_does_not_fit(
+        text: str, tool: str, arguments: dict[str, object], meant: list[str]) -> None:
+    intent = read_request(text)
+    assert not fits(intent, tool, WORDS[tool], arguments)
+    assert fitting_tools(intent, WORDS, tool) == meant
+
+
+def test_a_word_said_only_inside_another_word_does_not_fit() -> None:
+    assert not fits(read_request("Bring the blanket to the bedroom."), "start_video_call", WORDS["start_video_call"],
+                    {"contact": "Ben"})
+
+
+def test_a_tool_that_declares_no_words_is_not_checked() -> None:
+    assert fits(read_request("Wave at the cat."), "open_gripper", (), {})
+
+
+def test_a_yes_to_the_robots_own_question_is_read_with_the_conversation() -> None:
+    said = {"shall", "i", "call", "anna"}
+    call = ("start_video_call", WORDS["start_video_call"], {"contact": "Anna"})
+    assert fits(read_request("Yes please.", answering=True), *call, said)
+    assert not fits(read_request("Go to the kitchen."), *call, said)  # not an answer: earlier words do not count
+
+
+def test_the_gate_refuses_a_tool_nobody_asked_for_and_names_what_fits() -> None:
+    spec = ToolSpec("set_projector_power", "projector")
+    body = refusal(read_request("You look tired, go and get yourself charged up."), spec, {"on": True}, (), VOICE)
+    assert body is not None and body["error"] == NOT_REQUESTED and body["details"]["reason"] == OTHER
+    assert "return_to_dock" in body["hint"]
+    assert refusal(read_request("Turn the projector on."), spec, {"on": True}, (), VOICE) is None
+    assert refusal(read_request("You look tired, go and charge."), spec, {"on": True}) is None  # no words known
