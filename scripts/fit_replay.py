@@ -1,0 +1,68 @@
+"""Replay the actuation calls of stored eval runs through the fit check (`assistant/fit.py`)
+with the sim robot's declared words: how many wanted calls it would refuse, and how many
+unwanted ones. No model runs; the calls are those the runs made.
+
+    python scripts/fit_replay.py RUN.json [RUN.json ...]     # runs of `robovoice eval --json`
+
+Cases are looked up by id in tests/data/eval/text*.jsonl. A call counts as wanted when its
+tool is among the case's expected tools; calls the reading already refused are left out.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from robovoice.assistant.fit import fits, fitting_tools
+from robovoice.assistant.intent import read_request
+from robovoice.manifest.voice import VoiceDecl
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _declared() -> dict[str, tuple[str, ...]]:
+    words = {}
+    for path in sorted((ROOT / "src/robovoice/sim/manifests").glob("*/mcp.json")):
+        for tool in json.loads(path.read_text(encoding="utf-8")).get("tools", []):
+            section = VoiceDecl.model_validate(tool.get("voice", {}))
+            if section.words:
+                words[tool["name"]] = section.words
+    return words
+
+
+def main(runs: list[str]) -> None:
+    declared = _declared()
+    cases = {}
+    for path in sorted((ROOT / "tests/data/eval").glob("text*.jsonl")):
+        for line in path.read_text(encoding="utf-8").splitlines():
+            if line.strip():
+                case = json.loads(line)
+                cases[case["id"]] = case
+    counts = {"wanted, fits": 0, "wanted, refused": 0, "unwanted, fits": 0, "unwanted, refused": 0}
+    seen = set()
+    for run in runs:
+        for result in json.loads(Path(run).read_text(encoding="utf-8"))["results"]:
+            case = cases.get(result["id"])
+            if case is None or "text" not in case:
+                continue
+            intent = read_request(case["text"])
+            wanted = {e["tool"] for candidate in [case.get("expect", []), *case.get("expect_any", [])]
+                      for e in candidate}
+            for call in result["calls"]:
+                key = (result["id"], call["tool"], json.dumps(call["args"], sort_keys=True))
+                if (call["tool"] not in declared or call.get("error") == "not_requested"
+                        or intent.refusal is not None or key in seen):
+                    continue
+                seen.add(key)
+                fit = fits(intent, call["tool"], declared[call["tool"]], call["args"])
+                label = ("wanted" if call["tool"] in wanted else "unwanted") + (", fits" if fit else ", refused")
+                counts[label] += 1
+                if label in ("wanted, refused", "unwanted, fits", "unwanted, refused"):
+                    others = fitting_tools(intent, declared, call["tool"])
+                    print(f"{label:18} {result['id']:18} {call['tool']}{call['args']}  {case['text']!r}  fits: {others}")
+    print(json.dumps(counts))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
