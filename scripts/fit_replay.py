@@ -60,7 +60,8 @@ def main(runs: list[str]) -> None:
                 counts[label] += 1
                 if label in ("wanted, refused", "unwanted, fits", "unwanted, refused"):
                     others = fitting_tools(intent, declared, call["tool"])
-                    print(f"{label:18} {result['id']:18} {call['tool']}{call['args']}  {case['text']!r}  fits: {others}")
+                    print(f"{label:18} {result['id']:18} {call['tool']}{call['args']}  {case['text']!r}  "
+                          f"fits: {others}")
     print(json.dumps(counts))
 
 

@@ -58,7 +58,8 @@ def measure(url: str, model: str, cases: list[str], folder: Path) -> dict[str, o
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("mode", nargs="?", choices=list(MODES), help="start the server of this recipe (llama_server.MODES)")
+    parser.add_argument("mode", nargs="?", choices=list(MODES),
+                        help="start the server of this recipe (llama_server.MODES)")
     parser.add_argument("--url", help="measure a server already running here instead")
     parser.add_argument("--model", default=MODEL_ALIAS, help="the model name for --url")
     parser.add_argument("--cases", default=",".join(CASES), help="dev case ids, comma-separated")

@@ -185,3 +185,14 @@ async def test_a_tool_beside_a_request_for_another_is_refused_and_the_model_trie
         ("set_projector_power", NOT_REQUESTED), ("return_to_dock", None)]
     tool_message = server.requests[1].messages[-1]
     assert tool_message["role"] == "tool" and "or return_to_dock." in tool_message["content"]
+
+
+async def test_a_claim_of_a_refused_call_beside_an_action_that_ran_is_not_said() -> None:
+    """The projector ran, the call was refused (nobody in the request is "him"), and the model
+    says both happened: the call's sentence is false and held back, the projector's is said."""
+    result, _ = await scripted_turn(
+        [call("set_projector_power", on=True), call("start_video_call", contact="Anna"),
+         TextReply("The projector is now on. The video call with Anna has started.")],
+        "Put the projector on and then ring him.")
+    assert [o.error for o in result.outcomes] == [None, NOT_REQUESTED]
+    assert "call" not in result.reply and result.reply.endswith("The projector is now on.")

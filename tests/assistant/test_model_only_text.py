@@ -10,13 +10,14 @@ from typing import Any
 import pytest
 
 from robovoice.assistant.connect import connect_robot
-from robovoice.assistant.events import SentenceReady, ToolReturned, TurnEvent
+from robovoice.assistant.events import SentenceReady, ToolCalled, ToolReturned, TurnEvent
 from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts, refusal_reasons
 from robovoice.assistant.loop import Assistant
 from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT
 from robovoice.assistant.speech_guard import (
     MODEL_ONLY,
     ModelOnlyText,
+    TurnActions,
     claimed_action_in,
     figures_in,
     invented_figure_in,
@@ -153,7 +154,8 @@ def test_every_refusal_reason_has_words_of_the_robots_own(reason: str) -> None:
 @pytest.mark.parametrize("sentence", [
     "The projector is now on.", "I have turned on the projector.", "I've started a video call with Anna.",
     "Calling Anna now.", "On my way to the kitchen.", "Done.", "OK, done!", "Sure, heading to the hallway.",
-    "The projector has been switched on.", "I\u2019m now calling Ben.",
+    "The projector has been switched on.", "I\u2019m now calling Ben.", "The video call with Ben has started.",
+    "The robot is now at the front door.", "I am in a video call with Clara now.",
 ])
 def test_a_sentence_claiming_an_action_is_recognised(sentence: str) -> None:
     assert claimed_action_in(sentence) is not None
@@ -163,9 +165,33 @@ def test_a_sentence_claiming_an_action_is_recognised(sentence: str) -> None:
     "All right, I won't.", "I haven't turned it on.", "I will not drive anywhere.", "Which one do you mean?",
     "Your battery is at 84 percent.", "I can switch the projector on if you like.", "The projector is off.",
     "Okay, I will stay here.", "I'm glad Ben phoned.", "Yes, I can do that when you ask me to.",
+    "I havent turned it on.", "I dont want to drive to the front door.",
 ])
 def test_a_sentence_that_claims_nothing_or_denies_is_not(sentence: str) -> None:
     assert claimed_action_in(sentence) is None
+
+
+def _turn(*calls: tuple[str, dict[str, object], str | None]) -> TurnActions:
+    """The actions of a turn: (tool, arguments, error) per call; the look-ups are read-only."""
+    called = [ToolCalled(f"c{i}", name, dict(arguments)) for i, (name, arguments, _) in enumerate(calls)]
+    returned = [ToolReturned(f"c{i}", name, "", error is not None, 1.0, error)
+                for i, (name, _, error) in enumerate(calls)]
+    return TurnActions(called, returned, {"get_robot_pose", "get_camera_image"})
+
+
+@pytest.mark.parametrize(("actions", "sentence", "false"), [
+    (_turn(), "Heading to the kitchen now.", False),  # before any call: it may announce the call that follows
+    (_turn(("get_camera_image", {}, None)), "The robot is now at the front door.", True),  # only a look-up ran
+    (_turn(("navigate_to", {"target": "front door"}, None)), "I am now at the front door.", False),
+    (_turn(("set_projector_power", {"on": True}, None), ("start_video_call", {"contact": "Ben"}, "not_requested")),
+     "The video call with Ben has started.", True),  # names only the call that did not run
+    (_turn(("set_projector_power", {"on": True}, None), ("start_video_call", {"contact": "Ben"}, "not_requested")),
+     "The projector is now on.", False),
+    (_turn(("navigate_to", {"target": "garage"}, "unknown_target")), "On my way to the garage.", True),
+    (_turn(("start_video_call", {"contact": "Ben"}, "not_requested")), "I won't call Ben.", False),  # a denial
+])
+def test_a_claim_is_false_when_the_turn_did_not_do_it(actions: TurnActions, sentence: str, false: bool) -> None:
+    assert (actions.false_claim(sentence) is not None) is false
 
 
 @pytest.mark.parametrize(("sentence", "invented"), [

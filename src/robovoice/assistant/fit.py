@@ -65,6 +65,13 @@ def vocabulary(name: str, declared: Iterable[str], arguments: Mapping[str, Any])
     return [[stem(w)] for w in own + values + said_aloud] + [_stems(phrase) for phrase in declared]
 
 
+def names(sentence: str, name: str, arguments: Mapping[str, Any]) -> bool:
+    """The sentence names this call: a word of the tool's name or of its text arguments ("The
+    video call with Ben has started." names start_video_call(contact=Ben))."""
+    said = _stems(sentence)
+    return any(_says(said, phrase) for phrase in vocabulary(name, (), arguments))
+
+
 def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
     requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
     clauses = [_stems(c.text) for c in requests]

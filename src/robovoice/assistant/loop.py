@@ -26,7 +26,7 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import NOT_REQUESTED, refusal
+from robovoice.assistant.gate import refusal
 from robovoice.assistant.intent import Intent, read_request, words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.motion_probe import PoseMotionProbe
@@ -36,7 +36,7 @@ from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import (
     MODEL_ONLY,
     ModelOnlyText,
-    claimed_action_in,
+    TurnActions,
     figures_in,
     invented_figure_in,
     speakable,
@@ -143,7 +143,7 @@ class Assistant:
         model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
         for tool in await self.tools.specs():  # and the tools' descriptions (a small model reads them back)
             model_only.add(tool.description, short_copies=False)
-        refused = acted = False  # the check before acting refused a call / an actuation reached the robot
+        read_only = {s.name for s in await self.tools.specs() if s.read_only}
         retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
@@ -160,7 +160,7 @@ class Assistant:
             lookup_only = False
             try:
                 text, requested, guessed = await self._model_step(messages, specs, metrics, emit, model_only,
-                                                                  no_action=refused and not acted)
+                                                                  TurnActions(calls, outcomes, read_only))
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
                 fell_back = True
@@ -211,8 +211,6 @@ class Assistant:
                     looked_up.add(call_key(request))
                 else:
                     looked_up.clear()  # an action may change what a look-up returns
-                    refused = refused or returned.error == NOT_REQUESTED
-                    acted = acted or returned.error != NOT_REQUESTED
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
             for _, r in ran:  # a tool error's hint is for the model: never read out
@@ -238,7 +236,6 @@ class Assistant:
                 # is told which of the things the user asked comes next
                 messages.append(next_step())
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
-            read_only = {s.name for s in await self.tools.specs() if s.read_only}
             words_ = found_phrase(self.tools.voice(), calls, outcomes, read_only) or wordless_reply(outcomes, read_only)
             log.info("the model ended the turn without words; said %r", words_)
             await self._say(words_, metrics, emit)
@@ -271,11 +268,11 @@ class Assistant:
 
     async def _model_step(
         self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit,
-        model_only: ModelOnlyText, *, no_action: bool = False,
+        model_only: ModelOnlyText, actions: TurnActions,
     ) -> tuple[str, list[ToolCallRequested], bool]:
         """One model step, its sentences said as they come: what it said, the calls it asked for, and
-        whether a sentence was held back for a figure nobody gave it. `no_action`: a call was refused
-        and no action has run this turn, so a sentence claiming one was done is false and not said."""
+        whether a sentence was held back for a figure nobody gave it. `actions`: what the turn's
+        calls did so far, so a sentence claiming an action they did not do is not said."""
         splitter = SentenceSplitter()
         known = figures_in(m.text for m in messages)  # what a figure the model says may come from
         text: list[str] = []
@@ -296,7 +293,7 @@ class Assistant:
                 case TextDelta(delta):
                     for sentence in splitter.feed(delta):
                         guessed |= await self._say_speakable(sentence, text, metrics, emit, model_only, known,
-                                                             no_action)
+                                                             actions)
                 case ToolCallRequested():
                     requested.append(event)
                 case Finished():
@@ -305,7 +302,7 @@ class Assistant:
         metrics.model_ms += waited * 1000.0
         rest = splitter.flush()
         if rest:
-            guessed |= await self._say_speakable(rest, text, metrics, emit, model_only, known, no_action)
+            guessed |= await self._say_speakable(rest, text, metrics, emit, model_only, known, actions)
         for i, request in enumerate(requested):
             if not request.id:  # some servers omit ids; the history needs them to pair results
                 requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
@@ -314,12 +311,12 @@ class Assistant:
 
     async def _say_speakable(
         self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, model_only: ModelOnlyText,
-        known: Collection[float], no_action: bool = False,
+        known: Collection[float], actions: TurnActions,
     ) -> bool:
         """Say a sentence of the model's and keep it in `said`, unless it reads out words meant
         for the model only or tool-call syntax (`speech_guard`), gives a measured figure found
-        nowhere in the conversation (`known`), or claims an action done when none was
-        (`no_action`): then it is neither said nor kept, and a turn left with nothing
+        nowhere in the conversation (`known`), or claims an action the turn did not do
+        (`actions`): then it is neither said nor kept, and a turn left with nothing
         said ends with its look-ups' phrases (`found_phrase`) or `wordless_reply`, not in silence.
         True when it was held back for such a figure."""
         spoken = speakable(sentence, model_only)
@@ -330,9 +327,9 @@ class Assistant:
         if figure is not None:
             log.warning("not saying %r: %r is a figure nobody gave the model", sentence, figure)
             return True
-        claim = claimed_action_in(spoken) if no_action else None
+        claim = actions.false_claim(spoken)
         if claim is not None:
-            log.warning("not saying %r: it claims an action (%r) after a refusal, and none ran", sentence, claim)
+            log.warning("not saying %r: it claims an action (%r) this turn did not do", sentence, claim)
             return False
         said.append(spoken.strip())
         await self._say(spoken, metrics, emit)

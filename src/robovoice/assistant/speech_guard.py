@@ -13,8 +13,11 @@ from __future__ import annotations
 import itertools
 import math
 import re
-from collections.abc import Collection, Iterable
+from collections.abc import Collection, Iterable, Sequence
+from dataclasses import dataclass
 
+from robovoice.assistant.events import ToolCalled, ToolReturned
+from robovoice.assistant.fit import names
 from robovoice.assistant.gate import model_only_texts
 from robovoice.assistant.prompt import STEP_HINTS, SYSTEM_PROMPT
 
@@ -131,6 +134,8 @@ def unspeakable_in(sentence: str, model_only: ModelOnlyText = MODEL_ONLY) -> str
 _CLAIM = re.compile(
     r"\b(?:is|are|'s) now (?:on|off|running|playing|started|moving|driving|connected|charging)\b"
     r"|\b(?:is|are|'s|has been|have been) (?:now )?(?:turned|switched|started|ended|stopped) (?:on|off|now)?"
+    r"|\b(?:has|have) (?:now |just )?(?:started|ended|begun|connected)\b"
+    r"|\b(?:am|'m|is|are|'s) (?:now (?:at|in) the|in a (?:video )?call)\b"
     r"|\bon (?:my|its|our) way\b"
     r"|^(?:(?:ok|okay|sure|alright|all right|right)\W+)?done\b"
     r"|\b(?:i|i'?ve|i have|i'?m|i am|we'?re|it'?s|it is)\s+(?:now\s+|just\s+|already\s+)?"
@@ -141,7 +146,9 @@ _CLAIM = re.compile(
     r"|navigating|moving|going|turning|switching|starting|returning|docking)\b",
     re.IGNORECASE,
 )
-_DENIAL = re.compile(r"\b(?:not|never|no|won'?t|cannot|can'?t)\b|n'?t\b", re.IGNORECASE)
+# "n't", or its apostrophe dropped ("dont", "havent"), but not every word ending in "nt" ("front")
+_DENIAL = re.compile(r"\b(?:not|never|no|won'?t|cannot|can'?t)\b|n't\b|\b(?:do|does|did|is|are|was|were|has|have"
+                     r"|had|could|would|should|must|need)nt\b", re.IGNORECASE)
 
 
 def claimed_action_in(sentence: str) -> str | None:
@@ -153,6 +160,35 @@ def claimed_action_in(sentence: str) -> str | None:
         return None
     found = _CLAIM.search(text)
     return found.group(0).strip() if found is not None else None
+
+
+@dataclass(frozen=True, slots=True)
+class TurnActions:
+    """What the turn's tool calls did so far, to tell a false claim from a true one. Before any
+    tool ran, a claim may announce the call that follows it. After tools ran, a claim is false
+    when no action succeeded ("The robot is now at the front door." after a camera look-up),
+    or when it names only actions that did not ("The video call with Ben has started." after
+    the call was refused and only the projector went on)."""
+
+    calls: Sequence[ToolCalled] = ()
+    outcomes: Sequence[ToolReturned] = ()
+    read_only: Collection[str] = ()
+
+    def false_claim(self, sentence: str) -> str | None:
+        """The words of `sentence` that claim an action this turn did not do, or None."""
+        claim = claimed_action_in(sentence) if self.calls else None
+        if claim is None:
+            return None
+        actions = [(c, r) for c, r in zip(self.calls, self.outcomes, strict=True) if c.name not in self.read_only]
+        ran = [c for c, r in actions if r.error is None]
+        if not ran:
+            return claim
+        unrun = [c for c, r in actions if r.error is not None]
+        if any(names(sentence, c.name, c.arguments) for c in unrun) and not any(
+                names(sentence, c.name, c.arguments) for c in ran):
+            return claim
+        return None
+
 
 
 # --- a figure nobody gave the model --------------------------------------------------------------
