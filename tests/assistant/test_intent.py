@@ -230,3 +230,28 @@ def test_questions_about_state_and_about_abilities(text: str, kind: ClauseKind) 
 def test_a_contracted_question_beside_a_request_is_a_step() -> None:
     assert read_request("Go to the kitchen and what's your battery level?").steps == (
         "Go to the kitchen", "what's your battery level")
+
+
+def test_a_relation_said_before_is_someone_a_reference_can_mean() -> None:
+    intent = read_request("My daughter hasn't phoned all week. Get her on the video for me.")
+    assert refusal(intent, CALL, {"contact": "Anna"}) is None  # the model looks up who the daughter is
+    refused = refusal(read_request("Get her on the video for me."), CALL, {"contact": "Anna"})
+    assert refused is not None and refused["details"]["reason"] == "unclear"  # nobody named at all
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Could you ring Ben if he's not at work?", ()),  # a condition after the request: not now
+    ("Can you drive yourself to the dock whenever your battery gets low?", ()),
+    ("Would you call my son in an emergency?", ()),
+    ("Out of interest, could you switch the projector on?", ()),  # just asking
+    ("Could you ring Clara? I only want to know you can.", ()),
+    ("Go to the hallway and take a photo so I can see if the post has come.",  # "if" is "whether"
+     ("Go to the hallway", "take a photo so I can see if the post has come")),
+    ("Call Anna if you don't mind.", ("Call Anna if you don't mind",)),  # courtesy
+    ("Where is the charger? Tell me that first, then go to the bedroom.",  # the question is the step
+     ("Where is the charger", "go to the bedroom")),
+    ("Hallway. Now, please.", ("Hallway",)),  # a bare place, then "now"
+    ("Whereabouts are you?", ("Whereabouts are you",)),
+])
+def test_what_would_be_done_is_not_asked_now(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

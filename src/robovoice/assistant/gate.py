@@ -25,6 +25,7 @@ from typing import Any
 
 from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, usual
 from robovoice.assistant.intent import ClauseKind, Intent, words
+from robovoice.assistant.lexicon import RELATIONS
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.voice import VoiceDecl
 
@@ -114,8 +115,10 @@ def refusal(
             why = ClauseKind.NEGATED.value
         elif _names_only_what_was_declined(name, intent):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
-        elif named and intent.refers and not usual(named) & usual([*said, *intent.words()]):
-            why = UNCLEAR  # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber)
+        elif named and intent.refers and not (usual(named) | RELATIONS) & usual([*said, *intent.words()]):
+            # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
+            # daughter" is someone the robot's contacts say, which the model can look up)
+            why = UNCLEAR
         elif not fits(intent, name, declared.get(name, ()), arguments, said):
             why = OTHER  # "plug yourself in" and the projector
         else:

@@ -28,12 +28,21 @@ import re
 from dataclasses import dataclass
 from enum import Enum
 
+from robovoice.assistant.hypothetical import (
+    CONDITION,
+    COURTESY,
+    JUST_ASKING,
+    ON_ARRIVAL,
+    QUESTION_FORM,
+    SEQUENCE,
+    asks_ability,
+    conditional,
+)
 from robovoice.assistant.lexicon import (
     ASKING_VERBS,
     FILLER,
     IMPERATIVES,
     LATER,
-    NOT_GENERIC,
     NOT_NAMES,
     QUESTION_WORDS,
     TAG,
@@ -168,31 +177,7 @@ _NEGATION = re.compile(
     r"|\bnot\s*$|^not\b",  # "…, not Ben"
     re.IGNORECASE,
 )
-_ABILITY = re.compile(
-    r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
-    r"would you be able|do you know how|can robots|something you can|the kind of robot|"
-    r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
-    r"by yourself|on your own|ever)\b"
-    # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
-    # have left?" asks about the robot's state
-    r"|^(?:do you have|have you got)\b",
-    re.IGNORECASE,
-)
-# "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").
-_CAN_GENERIC = re.compile(
-    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|video calls|calls|projectors)\b",
-    re.IGNORECASE,
-)
-# … unless it names whom or where: "could you make a video call to Ben?" asks for one now.
-_NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)")
-# … or a bare plural with no article or owner before it ("can you send text messages?",
-# "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
-_CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IGNORECASE)
-
-
-def _asks_about_kinds(text: str) -> bool:
-    match = _CAN_PLURAL.match(text.rstrip(" ?.!"))
-    return match is not None and not set(words(match.group(0))[3:]) & NOT_GENERIC
+_MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
@@ -244,11 +229,10 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST  # a stop is always a request
     if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
         return ClauseKind.REQUEST
-    if (_CALL_OFF.search(lowered) or _NEGATION.search(lowered) or LATER.search(lowered)
+    if (_CALL_OFF.search(lowered) or _NEGATION.search(_MIND.sub("", lowered)) or LATER.search(lowered)
             or re.match(r"^no\b", lowered)):
         return ClauseKind.NEGATED
-    if _ABILITY.search(lowered) or (_CAN_GENERIC.search(lowered) and not _NAMED.search(text)) \
-            or _asks_about_kinds(lowered):
+    if asks_ability(text):
         return ClauseKind.ABILITY
     if _POLITE.search(lowered):
         return ClauseKind.REQUEST
@@ -281,6 +265,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue  # "…, would you?", "…, dear": part of the clause before it
         bare = FILLER.sub("", part.strip()).strip()
         kind = classify(part)
+        if _THAT_FIRST.match(bare):
+            clauses.append(Clause(part, ClauseKind.STATEMENT))  # "where are you? Tell me that first, …"
+            continue
         if _BEFORE_THAT.match(bare):
             front = _first_asked(clauses)
             clauses.append(Clause(part, ClauseKind.STATEMENT))
@@ -292,19 +279,24 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         if kind is ClauseKind.REQUEST and _FIRST.search(part.strip()):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
-        if sequence := _SEQUENCE.match(bare):
+        if sequence := SEQUENCE.match(bare):
             # "once you've checked your battery, …": that first, said as the request it is ("check
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
             kind, part = ClauseKind.REQUEST, base_form(sequence.group(1)) + bare[sequence.end():]
             front = _first_asked(clauses)
-        elif _ON_ARRIVAL.match(bare):
+        elif ON_ARRIVAL.match(bare):
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs
             continue
-        elif _CONDITION.match(bare):
+        elif CONDITION.match(bare):
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
-            condition = condition or not _COURTESY.match(bare)
+            condition = condition or not COURTESY.match(bare)
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
+        if kind is ClauseKind.REQUEST and conditional(bare):
+            kind = ClauseKind.ABILITY  # "could you ring the doctor in an emergency?": what it would do
+        if not bare and _NOW.search(part) and clauses and clauses[-1].kind is ClauseKind.STATEMENT \
+                and _fragment(clauses[-1].text):
+            clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "Bedroom. Now, please."
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
         previous = next((c for c in reversed(clauses) if FILLER.sub("", c.text).strip()), None)
@@ -332,6 +324,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             front = None
             continue
         clauses.append(Clause(part, kind))
+    if any(JUST_ASKING.search(c.text) for c in clauses):  # "Out of interest, can you …?"
+        clauses = [Clause(c.text, ClauseKind.ABILITY) if c.kind is ClauseKind.REQUEST
+                   and QUESTION_FORM.match(FILLER.sub("", c.text.strip())) else c for c in clauses]
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
     return Intent(tuple(clauses), answering)
@@ -343,20 +338,10 @@ _WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do 
                          r"leave (?:it|that))"
                          r"\b[\s,]*)+$",
                          re.IGNORECASE)
-# A condition before a request: what to do if or when something happens, not now.
-_CONDITION = re.compile(  # (not a question: "when will you be charged?")
-    r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case)\b",
-    re.IGNORECASE)
-# … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
-_COURTESY = re.compile(
-    r"^(?:if|when) (?:you(?:'re| are) ready|you (?:don'?t|do not|wouldn'?t) mind|you (?:can|could|would|please)\b|"
-    r"you (?:get|have) (?:a|the) (?:moment|minute|second|sec|chance)|it'?s (?:no|not too much) (?:trouble|bother)|"
-    r"it'?s (?:ok|okay|alright|all right))", re.IGNORECASE)
-# … and this is the order of steps, not a condition ("go to the door and when you get there, …").
-_ON_ARRIVAL = re.compile(r"^when you(?:'re| are)? (?:get |arrive|there|in there|back)", re.IGNORECASE)
-# … these say what to do first ("once you've checked your battery, come here").
-_SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", re.IGNORECASE)
-
+# "Tell me that first": the question said before it is the step, and it is first already.
+_THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
+# All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."
+_NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)

@@ -33,8 +33,8 @@ IMPERATIVES = frozenset({
 })
 
 QUESTION_WORDS = frozenset({
-    "what", "where", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do", "does",
-    "did", "have", "has", "was", "were",
+    "what", "where", "whereabouts", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do",
+    "does", "did", "have", "has", "was", "were",
 })
 
 NOT_GENERIC = frozenset({
@@ -45,6 +45,12 @@ NOT_GENERIC = frozenset({
 
 ASKING_VERBS = frozenset({"talk", "speak", "call", "ring", "phone", "video", "chat", "see", "know", "check", "hear",
                            "find"})
+
+# Who a person is to the speaker: "my daughter … get her on the video" names someone. ("The
+# doctor" is not here: it names Dr. Weber by title, so a "him" after it is checked as a name.)
+RELATIONS = frozenset({"son", "daughter", "neighbour", "neighbor", "gp", "sister", "brother", "mum", "mom",
+                       "mother", "dad", "father", "wife", "husband", "grandson", "granddaughter", "friend", "carer",
+                       "nurse", "niece", "nephew", "aunt", "auntie", "uncle", "cousin"})
 
 NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
 

@@ -1,0 +1,84 @@
+"""What the robot could or would do, not what to do now: questions about its abilities, and
+requests under a condition ("if Ben rings, …", "… when you're running low", "… in an
+emergency"). `intent` reads such clauses as ability questions: nothing acts."""
+
+from __future__ import annotations
+
+import re
+
+from robovoice.assistant.lexicon import NOT_GENERIC
+
+_ABILITY = re.compile(
+    r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
+    r"would you be able|do you know how|can robots|something you can|the kind of robot|"
+    r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
+    r"by yourself|on your own|ever)\b"
+    # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
+    # have left?" asks about the robot's state
+    r"|^(?:do you have|have you got)\b",
+    re.IGNORECASE,
+)
+# "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").
+_CAN_GENERIC = re.compile(
+    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|video calls|calls|projectors)\b",
+    re.IGNORECASE,
+)
+# … unless it names whom or where: "could you make a video call to Ben?" asks for one now.
+_NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)")
+# … or a bare plural with no article or owner before it ("can you send text messages?",
+# "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
+_CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IGNORECASE)
+
+
+def _asks_about_kinds(text: str) -> bool:
+    match = _CAN_PLURAL.match(text.rstrip(" ?.!"))
+    return match is not None and not set(re.findall(r"[a-z0-9']+", match.group(0).lower())[3:]) & NOT_GENERIC
+
+
+def asks_ability(text: str) -> bool:
+    """The clause (fillers stripped) asks whether the robot can do something."""
+    lowered = text.lower()
+    return bool(_ABILITY.search(lowered) or (_CAN_GENERIC.search(lowered) and not _NAMED.search(text))
+                or _asks_about_kinds(lowered))
+
+
+# A condition before a request: what to do if or when something happens, not now.
+CONDITION = re.compile(  # (not a question: "when will you be charged?")
+    r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case)\b",
+    re.IGNORECASE)
+# … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
+COURTESY = re.compile(
+    r"^(?:if|when) (?:you(?:'re| are) (?:ready|free)|you (?:don'?t|do not|wouldn'?t) mind|"
+    r"you (?:can|could|would|please|like|want)\b|"
+    r"you(?:'ve| have| get| got)? (?:a|the) (?:moment|minute|second|sec|chance)|"
+    r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
+    re.IGNORECASE)
+# … and this is the order of steps, not a condition ("go to the door and when you get there, …").
+ON_ARRIVAL = re.compile(r"^when you(?:'re| are)? (?:get |arrive|there|in there|back)", re.IGNORECASE)
+# … these say what to do first ("once you've checked your battery, come here").
+SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", re.IGNORECASE)
+
+# A condition after the request ("can you find your way back to your charger when you're running
+# low?", "could you ring the doctor in an emergency?"): the same, said the other way round.
+_LATE_CONDITION = re.compile(r"\s((?:if|when|whenever|in case)\s.+)$", re.IGNORECASE)
+# … but after these, "if" is "whether": "take a picture so I can see if the parcel's there"
+_WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sure)$", re.IGNORECASE)
+_EMERGENCY = re.compile(r"\b(?:in (?:an|case of(?: an)?) emergency|if anything (?:happens|happened|goes wrong))\b",
+                        re.IGNORECASE)
+# Said beside a "can you …?", these make it a question about ability: "Just out of interest, can
+# you …?", "Could you ring the doctor? I just want to know you can."
+JUST_ASKING = re.compile(
+    r"\b(?:(?:just|only) (?:asking|wondering|curious)|out of (?:interest|curiosity)|hypothetically|in theory|"
+    r"want(?:ed)? to know (?:(?:if|whether|that) )?you (?:can|could))\b",
+    re.IGNORECASE)
+QUESTION_FORM = re.compile(r"^(?:can|could|would|will) you\b", re.IGNORECASE)
+
+
+def conditional(request: str) -> bool:
+    """The request (fillers stripped) is to be done only if or when something happens."""
+    if _EMERGENCY.search(request):
+        return True
+    late = _LATE_CONDITION.search(request)
+    if late is None or _WHETHER.search(request[:late.start()]):
+        return False
+    return not (COURTESY.match(late.group(1)) or ON_ARRIVAL.match(late.group(1)) or SEQUENCE.match(late.group(1)))
