@@ -255,3 +255,8 @@ def test_a_relation_said_before_is_someone_a_reference_can_mean() -> None:
 ])
 def test_what_would_be_done_is_not_asked_now(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+def test_a_relation_in_the_possessive_is_someone_too() -> None:
+    intent = read_request("It's my son's birthday today, would you ring him for me?")
+    assert refusal(intent, CALL, {"contact": "Ben"}) is None

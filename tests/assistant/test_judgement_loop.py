@@ -185,6 +185,9 @@ async def test_a_tool_beside_a_request_for_another_is_refused_and_the_model_trie
         ("set_projector_power", NOT_REQUESTED), ("return_to_dock", None)]
     tool_message = server.requests[1].messages[-1]
     assert tool_message["role"] == "tool" and "or return_to_dock." in tool_message["content"]
+    offered = server.requests[1].tool_names  # the next step offers what fits, and the look-ups
+    assert {"return_to_dock", "navigate_to", "get_battery_state"} <= set(offered)
+    assert not {"set_projector_power", "start_video_call"} & set(offered)
 
 
 async def test_a_claim_of_a_refused_call_beside_an_action_that_ran_is_not_said() -> None:

@@ -26,8 +26,8 @@ _BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
 
 
 def usual(names: Iterable[str]) -> set[str]:
-    """The words as said aloud: "dr" is "doctor"."""
-    return {_SHORT_FORMS.get(w, w) for w in names}
+    """The words as said aloud, without a possessive: "dr" is "doctor", "son's" is "son"."""
+    return {_SHORT_FORMS.get(w.removesuffix("'s"), w.removesuffix("'s")) for w in names}
 
 # Words of a tool's name that say nothing about what it acts on.
 GENERIC_NAME_WORDS = frozenset({"set", "get", "start", "end", "to", "power", "state", "robot", "the", "on", "off"})

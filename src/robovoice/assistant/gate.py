@@ -130,5 +130,5 @@ def refusal(
         "error": NOT_REQUESTED,
         "message": f"not done: the user did not ask for {name} now ({why})",
         "hint": hint,
-        "details": {"tool": name, "reason": why},
+        "details": {"tool": name, "reason": why, **({"fits": others} if others else {})},
     }

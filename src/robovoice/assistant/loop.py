@@ -14,6 +14,7 @@ import time
 from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 
+from robovoice.assistant import turn_rules
 from robovoice.assistant.events import (
     BackendFailed,
     FirstTokenReceived,
@@ -145,6 +146,7 @@ class Assistant:
             model_only.add(tool.description, short_copies=False)
         read_only = {s.name for s in await self.tools.specs() if s.read_only}
         retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
+        fitting: list[str] = []  # after a call that did not fit the request: the tools that do
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
             due = done(outcomes, worded)
@@ -156,8 +158,8 @@ class Assistant:
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
             lookup = asked_left(asked, outcomes, worded) and lookups[done(outcomes, worded)]
-            specs = offered(specs, lookup or lookup_only)
-            lookup_only = False
+            specs = offered(specs, lookup or lookup_only, fitting)
+            lookup_only, fitting = False, []
             try:
                 text, requested, guessed = await self._model_step(messages, specs, metrics, emit, model_only,
                                                                   TurnActions(calls, outcomes, read_only))
@@ -213,6 +215,7 @@ class Assistant:
                     looked_up.clear()  # an action may change what a look-up returns
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
+            fitting = turn_rules.refused_for_fit([r for _, r in ran])
             for _, r in ran:  # a tool error's hint is for the model: never read out
                 hint = r.result.get("hint") if r.is_error and r.result is not None else None
                 if isinstance(hint, str):

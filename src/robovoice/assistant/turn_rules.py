@@ -38,10 +38,21 @@ def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: i
     return len(asked) > 1 and done(outcomes, worded) < len(asked)
 
 
-def offered(specs: Sequence[ToolSpec], lookup: bool) -> list[ToolSpec]:
+def offered(specs: Sequence[ToolSpec], lookup: bool, fitting: Collection[str] = ()) -> list[ToolSpec]:
     """The tools offered on a step: on a compound request's look-up ("tell me where you are,
-    then …") only the read-only ones, so nothing acts on it."""
-    return [s for s in specs if s.read_only or not lookup]
+    then …") only the read-only ones, so nothing acts on it; after a call was refused for
+    not fitting the request, the read-only ones and those that fit it (`refused_for_fit`)."""
+    return [s for s in specs if s.read_only or not (lookup or (fitting and s.name not in fitting))]
+
+
+def refused_for_fit(outcomes: Sequence[ToolReturned]) -> list[str]:
+    """The tools that fit the request, named by a refusal of a call that did not (`gate.OTHER`)."""
+    fits: list[str] = []
+    for o in outcomes:
+        details = o.result.get("details") if o.error == NOT_REQUESTED and o.result is not None else None
+        if isinstance(details, dict) and isinstance(details.get("fits"), list):
+            fits += [name for name in details["fits"] if isinstance(name, str)]
+    return fits
 
 
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
