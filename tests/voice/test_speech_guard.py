@@ -46,6 +46,7 @@ LEAKS = [
     "<tool_response>ok</tool_response>",
     "<think>\nThe user wants the kitchen.",
     "I should call navigate_to.</think>",
+    "The robot did not ask for set_projector_power.",  # a tool's name read out from an error message
 ]
 
 SPEAKABLE = [
@@ -55,6 +56,7 @@ SPEAKABLE = [
     "Three is < four, and {braces} are fine.",
     "My name is Robo, and my arguments are good ones.",
     "I use a function call to drive.",
+    "It's a well-known, up-to-date place.",
 ]
 
 

@@ -31,6 +31,7 @@ _TOOL_SYNTAX = re.compile(
     r'|\{\s*"type"\s*:\s*"function"'  # a tool's definition read back
     r'|\{+\s*"name"\s*:'  # any object that opens with a name: a call, its arguments left out or not
     r"|```"  # a Markdown code fence (a coder model puts a call between two)
+    r"|\b[a-z]+(?:_[a-z]+)+\b"  # an identifier: a tool's name read out ("did not ask for set_projector_power")
     r"|\bfunctions\.[A-Za-z_]\w*"  # chatml-function-calling's call head (not "functions." ending a sentence)
     r'|\{\s*"(?:name|function)"\s*:\s*"[^"]*"\s*,\s*"(?:arguments|parameters)"'  # a call as a JSON object
     r'|"(?:arguments|parameters)"\s*:\s*\{[^{}]*\}\s*,\s*"name"\s*:'  # ... with its keys the other way round
