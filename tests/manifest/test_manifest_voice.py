@@ -11,7 +11,7 @@ import pytest
 
 from robovoice.errors import ManifestError
 from robovoice.manifest import check_manifest_dir, validate_manifest
-from robovoice.manifest.check import NO_STOP_TOOL
+from robovoice.manifest.check import NO_STOP_TOOL, UNCHECKED_FIT
 from robovoice.manifest.errors import ManifestErrors
 from robovoice.manifest.voice import fill, template_fields
 
@@ -88,6 +88,16 @@ def test_check_manifests_says_when_no_tool_has_the_stop_role(tmp_path: Path, nav
     _write(tmp_path / "base" / "mcp.json", {"node": "base", "tools": [
         {"name": "emergency_stop", "rpc": "stop", "description": "Stop now.", "voice": {"role": "stop"}}]})
     assert NO_STOP_TOOL not in check_manifest_dir(tmp_path).notes
+
+
+def test_check_manifests_names_the_actuation_tools_without_words(tmp_path: Path) -> None:
+    _write(tmp_path / "base" / "mcp.json", {"node": "base", "tools": [
+        {"name": "emergency_stop", "rpc": "stop", "description": "Stop now.",
+         "voice": {"role": "stop", "words": ["stop", "halt"]}},
+        {"name": "open_gripper", "rpc": "open", "description": "Open the gripper."},
+        {"name": "get_status", "rpc": "status", "description": "Status.", "annotations": {"readOnlyHint": True}}]})
+    notes = check_manifest_dir(tmp_path).notes
+    assert f"{UNCHECKED_FIT} open_gripper" in notes  # neither the stop (it has words) nor the look-up
 
 
 def test_the_sims_manifests_declare_their_roles() -> None:

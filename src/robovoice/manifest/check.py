@@ -89,7 +89,17 @@ def voice_role_notes(catalog: ToolCatalog) -> list[str]:
     if roles.count("stop") > 1:
         notes.append("more than one tool declares the voice role \"stop\": a spoken stop calls the first "
                      "by name")
+    unchecked = sorted(e.name for e in catalog.tools() if not e.annotations.readOnlyHint
+                       and (e.voice is None or not e.voice.words))
+    if unchecked:
+        notes.append(f"{UNCHECKED_FIT} {', '.join(unchecked)}")
     return notes
+
+
+UNCHECKED_FIT = (
+    "these actuation tools declare no \"voice\": {\"words\": [...]}, so a call the model makes of one is not "
+    "checked against the words of the request (docs/judgement.md):"
+)
 
 
 def _unchecked_surface(node: str, manifest: Manifest, source: str) -> NodeSurface:
