@@ -252,6 +252,7 @@ def test_a_relation_said_before_is_someone_a_reference_can_mean() -> None:
      ("Where is the charger", "go to the bedroom")),
     ("Hallway. Now, please.", ("Hallway",)),  # a bare place, then "now"
     ("Whereabouts are you?", ("Whereabouts are you",)),
+    ("Would you know how to phone my daughter?", ()),  # audio test v2 heard this as a request
 ])
 def test_what_would_be_done_is_not_asked_now(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
@@ -260,3 +261,10 @@ def test_what_would_be_done_is_not_asked_now(text: str, steps: tuple[str, ...]) 
 def test_a_relation_in_the_possessive_is_someone_too() -> None:
     intent = read_request("It's my son's birthday today, would you ring him for me?")
     assert refusal(intent, CALL, {"contact": "Ben"}) is None
+
+
+def test_a_possessive_pronoun_names_nobody() -> None:
+    """Audio test v2's garbled "could you ring mine?" started a call to Anna."""
+    refused = refusal(read_request("Could you ring mine?"), CALL, {"contact": "Anna"})
+    assert refused is not None and refused["details"]["reason"] == "unclear"
+    assert refusal(read_request("Ring a friend of mine, Clara."), CALL, {"contact": "Clara"}) is None

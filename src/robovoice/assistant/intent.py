@@ -132,7 +132,8 @@ _TELL_ME = re.compile(
     r"(?:please\s+)?(?:(?:tell|let)\s+me|(?:try )?find out)\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
 _STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|around))\b", re.IGNORECASE)
 _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
-_REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person)\b", re.IGNORECASE)
+_REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
+                        re.IGNORECASE)
 
 
 def words(text: str) -> list[str]:
