@@ -5,15 +5,10 @@ from __future__ import annotations
 
 import pytest
 
-from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.gate import NOT_REQUESTED
 from robovoice.assistant.loop import Assistant
-from robovoice.config import RobotConfig
-from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ScriptedReply, TextReply, ToolCallReply
-from robovoice.llm.openai_compat import OpenAICompatBackend
-from tests.assistant.scripted import scripted_turn
-
-SIM = RobotConfig(address="sim://?speed=50")
+from robovoice.llm.fake_server import ScriptedCall, ScriptedReply, TextReply, ToolCallReply
+from tests.assistant.scripted import scripted_sim, scripted_turn
 
 
 def call(name: str, **arguments: object) -> ToolCallReply:
@@ -21,14 +16,10 @@ def call(name: str, **arguments: object) -> ToolCallReply:
 
 
 async def test_a_negated_request_never_reaches_the_robot() -> None:
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+    async with scripted_sim(
         [call("navigate_to", target="bathroom"), TextReply("All right, I'll stay here.")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            result = await Assistant(backend, robot.tools).turn("Don't drive to the bathroom just now.")
-        finally:
-            await backend.aclose()
+    ) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn("Don't drive to the bathroom just now.")
         assert robot.sim is not None
         assert not robot.sim.state.moving and robot.sim.state.nearest_place != "bathroom"
     assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
@@ -45,15 +36,11 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
 async def test_after_a_refusal_the_model_never_claims_the_refused_action_done(worded: str, said: str) -> None:
     """A small model words the refused call as done ("The projector is now on."): a false claim
     the person would believe. It is not said; what is true is."""
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+    async with scripted_sim(
         [call("set_projector_power", on=True), TextReply(worded)]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            result = await Assistant(backend, robot.tools).turn("Are you able to switch on a projector?")
-            assert robot.sim is not None and not robot.sim.state.projector_on
-        finally:
-            await backend.aclose()
+    ) as (robot, _server, backend):
+        result = await Assistant(backend, robot.tools).turn("Are you able to switch on a projector?")
+        assert robot.sim is not None and not robot.sim.state.projector_on
     assert result.reply == said
 
 
@@ -76,12 +63,8 @@ async def test_a_compound_request_is_carried_out_step_by_step() -> None:
         call("navigate_to", target="kitchen"),
         call("set_projector_power", on=True),
     ]
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(script) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            result = await Assistant(backend, robot.tools).turn("Go to the kitchen and then switch the projector on.")
-        finally:
-            await backend.aclose()
+    async with scripted_sim(script) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn("Go to the kitchen and then switch the projector on.")
         assert robot.sim is not None and robot.sim.state.projector_on
     assert [c.name for c in result.calls] == ["navigate_to", "set_projector_power"]
     # first the model was told to take one thing at a time, after the drive what comes next
@@ -97,20 +80,16 @@ async def test_a_stop_is_refused_only_where_the_robot_stands_still() -> None:
     the same words would be refused; the robot's stop tool (voice role "stop") is not while the
     robot moves. Where its pose snapshot says it stands still, a stop the words never asked for
     ("Wait, don't call anyone.") is refused: it would do nothing the person asked."""
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+    async with scripted_sim(
         [call("stop_robot"), call("stop_robot"), TextReply("All right.")]  # the first is said by its phrase
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            assert robot.sim is not None
-            await robot.sim.apply_setup("driving")
-            assert robot.sim.state.moving
-            result = await Assistant(backend, robot.tools).turn("Hold it! Stay put!")
-            assert not robot.sim.state.moving
-            assert [o.error for o in result.outcomes] == [None]
-            standing = await Assistant(backend, robot.tools).turn("Wait, don't call anyone.")
-        finally:
-            await backend.aclose()
+    ) as (robot, _server, backend):
+        assert robot.sim is not None
+        await robot.sim.apply_setup("driving")
+        assert robot.sim.state.moving
+        result = await Assistant(backend, robot.tools).turn("Hold it! Stay put!")
+        assert not robot.sim.state.moving
+        assert [o.error for o in result.outcomes] == [None]
+        standing = await Assistant(backend, robot.tools).turn("Wait, don't call anyone.")
     assert [o.error for o in standing.outcomes] == [NOT_REQUESTED]
 
 
@@ -118,21 +97,17 @@ async def test_never_mind_cancels_a_drive_under_way_and_nothing_when_none_is() -
     """"Never mind" asks for nothing new: during a drive the robot's cancel tool (voice role
     "cancel") still runs; with the robot standing still it is refused, and so is any other
     action the model reads into it (a small model switched the projector off)."""
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+    async with scripted_sim(
         [call("cancel_navigation"), call("cancel_navigation"), TextReply("All right."),
          call("set_projector_power", on=False), TextReply("All right.")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            assert robot.sim is not None
-            await robot.sim.apply_setup("driving+projector_on")
-            driving = await Assistant(backend, robot.tools).turn("Oh, never mind, forget it.")
-            assert not robot.sim.state.moving
-            standing = await Assistant(backend, robot.tools).turn("Never mind about that.")
-            projector = await Assistant(backend, robot.tools).turn("Never mind, not tonight.")
-            assert robot.sim.state.projector_on
-        finally:
-            await backend.aclose()
+    ) as (robot, _server, backend):
+        assert robot.sim is not None
+        await robot.sim.apply_setup("driving+projector_on")
+        driving = await Assistant(backend, robot.tools).turn("Oh, never mind, forget it.")
+        assert not robot.sim.state.moving
+        standing = await Assistant(backend, robot.tools).turn("Never mind about that.")
+        projector = await Assistant(backend, robot.tools).turn("Never mind, not tonight.")
+        assert robot.sim.state.projector_on
     assert [o.error for o in driving.outcomes] == [None]
     assert [o.error for o in standing.outcomes] == [NOT_REQUESTED]
     assert [o.error for o in projector.outcomes] == [NOT_REQUESTED]
@@ -141,18 +116,14 @@ async def test_never_mind_cancels_a_drive_under_way_and_nothing_when_none_is() -
 async def test_keep_going_dont_stop_during_a_drive_stops_nothing() -> None:
     """The words say to carry on: the stop and cancel tools stay refused while the robot moves
     (test v8: "Keep going, keep going, don't stop - I was only talking to the cat." cancelled)."""
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+    async with scripted_sim(
         [call("cancel_navigation"), TextReply("All right."), call("stop_robot"), TextReply("All right.")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            assert robot.sim is not None
-            await robot.sim.apply_setup("driving")
-            cancelled = await Assistant(backend, robot.tools).turn("Keep going, don't stop, I'm talking to the dog.")
-            stopped = await Assistant(backend, robot.tools).turn("No need to stop, carry on.")
-            assert robot.sim.state.moving
-        finally:
-            await backend.aclose()
+    ) as (robot, _server, backend):
+        assert robot.sim is not None
+        await robot.sim.apply_setup("driving")
+        cancelled = await Assistant(backend, robot.tools).turn("Keep going, don't stop, I'm talking to the dog.")
+        stopped = await Assistant(backend, robot.tools).turn("No need to stop, carry on.")
+        assert robot.sim.state.moving
     assert [o.error for o in cancelled.outcomes] == [NOT_REQUESTED]
     assert [o.error for o in stopped.outcomes] == [NOT_REQUESTED]
 
@@ -171,14 +142,10 @@ async def test_a_tool_errors_hint_read_out_is_not_said() -> None:
 async def test_a_tool_beside_a_request_for_another_is_refused_and_the_model_tries_again() -> None:
     """"go and get yourself plugged in" and the model switches the projector on: the call does
     not fit the request (`fit`), never reaches the robot, and the model is told what fits."""
-    async with connect_robot(SIM) as robot, FakeOpenAIServer(
+    async with scripted_sim(
         [call("set_projector_power", on=True), call("return_to_dock"), TextReply("Off I go.")]
-    ) as server:
-        backend = OpenAICompatBackend(server.base_url, server.model)
-        try:
-            result = await Assistant(backend, robot.tools).turn("You look worn out, go and get yourself plugged in.")
-        finally:
-            await backend.aclose()
+    ) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn("You look worn out, go and get yourself plugged in.")
         assert robot.sim is not None and not robot.sim.state.projector_on
         assert robot.sim.state.nearest_place == "charging dock"
     assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
