@@ -19,7 +19,8 @@ from __future__ import annotations
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.intent import ClauseKind, Intent, words
+from robovoice.assistant.intent import ClauseKind, Intent
+from robovoice.assistant.lexicon import words
 
 _SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus"}
 _BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
@@ -28,6 +29,7 @@ _BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
 def usual(names: Iterable[str]) -> set[str]:
     """The words as said aloud, without a possessive: "dr" is "doctor", "son's" is "son"."""
     return {_SHORT_FORMS.get(w.removesuffix("'s"), w.removesuffix("'s")) for w in names}
+
 
 # Words of a tool's name that say nothing about what it acts on.
 GENERIC_NAME_WORDS = frozenset({"set", "get", "start", "end", "to", "power", "state", "robot", "the", "on", "off"})

@@ -24,8 +24,8 @@ from collections.abc import Collection, Mapping
 from typing import Any
 
 from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, usual
-from robovoice.assistant.intent import ClauseKind, Intent, words
-from robovoice.assistant.lexicon import RELATIONS
+from robovoice.assistant.intent import ClauseKind, Intent
+from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.voice import VoiceDecl
 

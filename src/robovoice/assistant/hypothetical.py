@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import NOT_GENERIC
+from robovoice.assistant.lexicon import NOT_GENERIC, words
 
 _ABILITY = re.compile(
     r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
@@ -32,7 +32,7 @@ _CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IG
 
 def _asks_about_kinds(text: str) -> bool:
     match = _CAN_PLURAL.match(text.rstrip(" ?.!"))
-    return match is not None and not set(re.findall(r"[a-z0-9']+", match.group(0).lower())[3:]) & NOT_GENERIC
+    return match is not None and not set(words(match.group(0))[3:]) & NOT_GENERIC
 
 
 def asks_ability(text: str) -> bool:

@@ -47,6 +47,7 @@ from robovoice.assistant.lexicon import (
     QUESTION_WORDS,
     TAG,
     base_form,
+    words,
 )
 
 
@@ -134,10 +135,6 @@ _STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|aroun
 _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
                         re.IGNORECASE)
-
-
-def words(text: str) -> list[str]:
-    return re.findall(r"[a-z0-9']+", text.lower().replace("\u2019", "'"))
 
 
 # --- splitting ------------------------------------------------------------------------------

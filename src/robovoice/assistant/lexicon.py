@@ -1,10 +1,17 @@
-"""The words `intent` reads requests with: verbs that start a request, question words, words that
-make an object specific, the verbs a person's own plan may ask the robot for, and the base form
-of a participle ("once you've gone to the bedroom" is "go to the bedroom")."""
+"""The words `intent` reads requests with, and how it splits them (`words`): verbs that start a
+request, question words, words that make an object specific, the verbs a person's own plan may
+ask the robot for, and the base form of a participle ("once you've gone to the bedroom" is "go
+to the bedroom")."""
 
 from __future__ import annotations
 
 import re
+
+
+def words(text: str) -> list[str]:
+    """The words of `text`, lower-cased, apostrophes kept ("what's", "son's")."""
+    return re.findall(r"[a-z0-9']+", text.lower().replace("\u2019", "'"))
+
 
 # Said before or around a request without changing it.
 FILLER = re.compile(

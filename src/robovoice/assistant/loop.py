@@ -28,7 +28,8 @@ from robovoice.assistant.events import (
     notify,
 )
 from robovoice.assistant.gate import refusal
-from robovoice.assistant.intent import Intent, read_request, words
+from robovoice.assistant.intent import Intent, read_request
+from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import found_phrase, phrase_answer
@@ -45,15 +46,7 @@ from robovoice.assistant.speech_guard import (
 from robovoice.assistant.turn_rules import asked_left, call_key, done, is_repeat, offered, wordless_reply
 from robovoice.audio.sentences import SentenceSplitter
 from robovoice.errors import LLMError
-from robovoice.llm.base import (
-    ChatMessage,
-    ContentPart,
-    Finished,
-    LLMBackend,
-    TextDelta,
-    ToolCallRequested,
-    ToolSpec,
-)
+from robovoice.llm.base import ChatMessage, ContentPart, Finished, LLMBackend, TextDelta, ToolCallRequested, ToolSpec
 from robovoice.llm.failover import FALLBACK_MESSAGE
 from robovoice.manifest.voice import VoiceDecl, tools_with_role
 
@@ -142,9 +135,9 @@ class Assistant:
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
         answer_now = False
         model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
-        for tool in await self.tools.specs():  # and the tools' descriptions (a small model reads them back)
+        for tool in (tools := await self.tools.specs()):  # and their descriptions (a small model reads them back)
             model_only.add(tool.description, short_copies=False)
-        read_only = {s.name for s in await self.tools.specs() if s.read_only}
+        read_only = {s.name for s in tools if s.read_only}
         retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
         fitting: list[str] = []  # after a call that did not fit the request: the tools that do
 
