@@ -16,19 +16,15 @@ from pathlib import Path
 
 from robovoice.assistant.fit import fits, fitting_tools
 from robovoice.assistant.intent import read_request
-from robovoice.manifest.voice import VoiceDecl
+from robovoice.manifest.loader import load_manifest_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def _declared() -> dict[str, tuple[str, ...]]:
-    words = {}
-    for path in sorted((ROOT / "src/robovoice/sim/manifests").glob("*/mcp.json")):
-        for tool in json.loads(path.read_text(encoding="utf-8")).get("tools", []):
-            section = VoiceDecl.model_validate(tool.get("voice", {}))
-            if section.words:
-                words[tool["name"]] = section.words
-    return words
+    loaded = load_manifest_dir(ROOT / "src/robovoice/sim/manifests")
+    return {tool.name: tool.voice.words for item in loaded.manifests.values() for tool in item.manifest.tools
+            if tool.voice is not None and tool.voice.words}
 
 
 def main(runs: list[str]) -> None:

@@ -3,7 +3,6 @@ manifests declare: plain code, no model. The utterances are made up here, not ev
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 import pytest
@@ -12,18 +11,16 @@ from robovoice.assistant.fit import fits, fitting_tools, stem
 from robovoice.assistant.gate import NOT_REQUESTED, OTHER, refusal
 from robovoice.assistant.intent import read_request
 from robovoice.llm.base import ToolSpec
+from robovoice.manifest.loader import load_manifest_dir
 from robovoice.manifest.voice import VoiceDecl
 
 MANIFESTS = Path(__file__).parents[2] / "src" / "robovoice" / "sim" / "manifests"
 
 
 def _sim_voice() -> dict[str, VoiceDecl]:
-    sections = {}
-    for path in sorted(MANIFESTS.glob("*/mcp.json")):
-        for tool in json.loads(path.read_text(encoding="utf-8")).get("tools", []):
-            if "voice" in tool:
-                sections[tool["name"]] = VoiceDecl.model_validate(tool["voice"])
-    return sections
+    loaded = load_manifest_dir(MANIFESTS)
+    return {tool.name: tool.voice for item in loaded.manifests.values() for tool in item.manifest.tools
+            if tool.voice is not None}
 
 
 VOICE = _sim_voice()
