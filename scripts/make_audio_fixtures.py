@@ -371,12 +371,13 @@ def main(argv: Iterable[str] | None = None) -> int:
     parser.add_argument("--only", nargs="*", help="only these clip ids")
     parser.add_argument("--negative-minutes", type=float, default=0.0)
     parser.add_argument("--negative-out", type=Path)
+    parser.add_argument("--negative-seed", type=int, default=7, help="another seed: other voices, levels and noise")
     args = parser.parse_args(list(argv) if argv is not None else None)
 
     if args.negative_minutes > 0:
         if args.negative_out is None:
             parser.error("--negative-minutes needs --negative-out")
-        write_negative(args.negative_minutes, args.negative_out)
+        write_negative(args.negative_minutes, args.negative_out, seed=args.negative_seed)
         return 0
     if args.set == "tests":
         specs, out = TEST_SET, args.out or DEFAULT_OUT

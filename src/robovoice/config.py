@@ -218,7 +218,12 @@ class VoiceConfig(_Frozen):
     # what the wake word says, for stripping it from transcripts and for speech-to-text hints;
     # default: the bundled model's name as words ("hey_mycroft" -> "hey mycroft")
     wake_phrase: str | None = None
-    wake_threshold: float = Field(default=0.5, gt=0, lt=1)
+    # 0.6, not openWakeWord's 0.5: the highest of 8 offsets raises talk without the phrase to
+    # 0.49 (45 min, docs/voice.md "Wake word at every offset"); wake phrases score over 0.7 or under 0.5
+    wake_threshold: float = Field(default=0.6, gt=0, lt=1)
+    # 10 ms offsets the wake word is scored at (audio.wake.OpenWakeWordDetector): 8 catches a
+    # borderline voice wherever the microphone's frames start; 1 is openWakeWord's own
+    wake_phases: Literal[1, 2, 4, 8] = 8
     end_of_turn_silence_ms: int = Field(default=500, ge=100)
     max_utterance_s: float = Field(default=15.0, gt=0)
     # turn-taking: the command after a wake word said alone; answering the robot's question

@@ -64,7 +64,7 @@ def test_threshold_can_be_raised_while_the_robot_speaks_and_restored() -> None:
     assert run(d, [0.7, 0.8, 0.0]) == []
     assert len(run(d, [0.95], t0=10.0)) == 1
     d.set_threshold(None)
-    assert d.threshold == 0.5
+    assert d.threshold == WakeDeciderConfig().threshold
     with pytest.raises(ConfigError):
         d.set_threshold(1.5)
 

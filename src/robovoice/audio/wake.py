@@ -60,7 +60,7 @@ class WakeDeciderConfig:
     detection, scores must also fall below ``threshold * rearm_ratio`` before the next one,
     so one long utterance of the phrase wakes once."""
 
-    threshold: float = 0.5
+    threshold: float = 0.6  # as config.VoiceConfig.wake_threshold, which says why
     min_frames: int = 1
     refractory_s: float = 2.0
     rearm_ratio: float = 0.5
@@ -165,6 +165,8 @@ def resolve_wake_model(model: str) -> Path:
 _MEL_CONTEXT = 480  # extra samples the mel model needs before each 80 ms frame (3 hops)
 _MEL_WINDOW = 76  # mel frames per embedding (775 ms)
 _MEL_BINS = 32
+_MEL_PER_FRAME = 8  # mel frames (10 ms hops) per 80 ms frame: the embeddings' stride
+_PHASE_HOLD = 19  # frames (1.5 s) the other offsets stay scored after a score reached the gate
 
 
 class OpenWakeWordDetector:
@@ -177,11 +179,28 @@ class OpenWakeWordDetector:
     copies of 10 s of audio), and `reset()` really clears the audio and feature history
     (``Model.reset()`` does not). As in openWakeWord the feature window starts filled with
     embeddings of low-level noise and the first `warmup_frames` scores after a reset are 0.
+
+    `phases`: openWakeWord embeds the last 775 ms of mel frames once per 80 ms frame, so
+    the classifier sees the audio at one of 8 possible 10 ms offsets, and a phrase that
+    scores 0.99 at one offset can score 0.05 at the next: whether a borderline voice wakes
+    the robot depends on where the microphone's frames happen to start. With ``phases=8``
+    the score is the highest over all 8 offsets (1, 2, 4 or 8 evenly spaced). The other
+    offsets cost ~1.1 ms each per frame, so they are only scored while the plain score has
+    reached `phase_gate` in the last 1.5 s (about 1 % of frames of continuous speech and
+    noise); when the gate opens their 1.3 s feature history is embedded at once from the
+    kept mel frames, which gives exactly the scores of running them all the time.
     """
 
     frame_samples: int = WAKE_FRAME_SAMPLES
 
-    def __init__(self, model: str = "hey_jarvis", *, warmup_frames: int = 5) -> None:
+    def __init__(
+        self, model: str = "hey_jarvis", *, warmup_frames: int = 5, phases: int = 8, phase_gate: float = 0.02
+    ) -> None:
+        if phases not in (1, 2, 4, 8):
+            raise ConfigError(f"wake word phases must be 1, 2, 4 or 8 (10 ms offsets per 80 ms frame), got {phases}")
+        # mel frames back from the newest at which the other phases' windows end
+        self._offsets = [p * _MEL_PER_FRAME // phases for p in range(1, phases)]
+        self._gate = phase_gate
         try:
             import onnxruntime as ort
         except ImportError as exc:
@@ -205,6 +224,8 @@ class OpenWakeWordDetector:
         inp = self._classifier.get_inputs()[0]
         self._input_name = inp.name
         self._window = int(inp.shape[1])  # embedding frames the classifier looks at (16)
+        # enough mel frames to embed every phase's whole feature window again
+        self._kept_mels = _MEL_WINDOW + _MEL_PER_FRAME * self._window
         self._warmup = warmup_frames
         self._initial_features = self._filler_features()
         self.reset()
@@ -228,8 +249,10 @@ class OpenWakeWordDetector:
 
     def reset(self) -> None:
         self._audio = np.zeros(0, dtype=np.int16)  # the last samples, for the mel context
-        self._mels = np.ones((_MEL_WINDOW, _MEL_BINS), dtype=np.float32)
+        self._mels = np.ones((self._kept_mels, _MEL_BINS), dtype=np.float32)
         self._features = self._initial_features.copy()
+        self._phase_features: np.ndarray | None = None  # (offsets, window, dim) while the gate is open
+        self._open_until = 0
         self._frames_since_reset = 0
 
     def process(self, frame: Samples) -> float:
@@ -237,12 +260,46 @@ class OpenWakeWordDetector:
         if x.shape != (WAKE_FRAME_SAMPLES,):
             raise AudioError(f"wake word frames are {WAKE_FRAME_SAMPLES} samples of 16 kHz mono, got {x.shape}")
         self._audio = np.concatenate((self._audio, x))[-(WAKE_FRAME_SAMPLES + _MEL_CONTEXT) :]
-        self._mels = np.concatenate((self._mels, self._melspectrogram(self._audio)))[-_MEL_WINDOW:]
-        embedding = self._embed(self._mels[None, :, :])
+        self._mels = np.concatenate((self._mels, self._melspectrogram(self._audio)))[-self._kept_mels :]
+        embedding = self._embed(self._mels[None, -_MEL_WINDOW:, :])
         self._features = np.concatenate((self._features, embedding))[-self._window :]
-        out = self._classifier.run(None, {self._input_name: self._features[None, :, :]})[0]
+        score = self._classify(self._features)
         self._frames_since_reset += 1
-        return 0.0 if self._frames_since_reset <= self._warmup else float(np.asarray(out).reshape(-1)[0])
+        if self._offsets:
+            if score >= self._gate:
+                self._open_until = self._frames_since_reset + _PHASE_HOLD
+            if self._frames_since_reset <= self._open_until:
+                score = max(score, self._other_phases())
+            else:
+                self._phase_features = None
+        return 0.0 if self._frames_since_reset <= self._warmup else score
+
+    def _classify(self, features: np.ndarray) -> float:
+        out = self._classifier.run(None, {self._input_name: features[None, :, :]})[0]
+        return float(np.asarray(out).reshape(-1)[0])
+
+    def _window_at(self, end: int) -> np.ndarray:
+        """The mel window ending `end` frames back from the newest (0: the newest)."""
+        stop = self._mels.shape[0] - end
+        return self._mels[stop - _MEL_WINDOW : stop]
+
+    def _other_phases(self) -> float:
+        """The highest score at the other offsets, updating (or first building) their features."""
+        if self._phase_features is None:  # the gate just opened: every offset's whole window
+            frames, window = self._frames_since_reset, self._window
+            # feature k holds frame `frames - window + 1 + k`; frames before the reset keep
+            # the filler embeddings there, as the plain features do
+            fillers = max(0, window - frames)
+            ends = [off + _MEL_PER_FRAME * (window - 1 - k) for off in self._offsets for k in range(fillers, window)]
+            embedded = self._embed(np.stack([self._window_at(e) for e in ends]))
+            features = np.empty((len(self._offsets), window, embedded.shape[-1]), dtype=np.float32)
+            features[:, :fillers] = self._initial_features[frames : frames + fillers]
+            features[:, fillers:] = embedded.reshape(len(self._offsets), window - fillers, -1)
+            self._phase_features = features
+        else:
+            new = self._embed(np.stack([self._window_at(off) for off in self._offsets]))
+            self._phase_features = np.concatenate((self._phase_features[:, 1:], new[:, None]), axis=1)
+        return max(self._classify(f) for f in self._phase_features)
 
 
 # --- glue ----------------------------------------------------------------------------------

@@ -95,4 +95,5 @@ def _voice_bridge(config: Config, backend: Any, tools: Any) -> Any:
         raise ConfigError(f"the console's voice needs the voice extra (pip install 'robovoice[voice]'), "
                           f"or run it with --no-voice ({exc})") from exc
     voice = config.voice
-    return VoiceBridge(lambda: load_voice_models(wake_model=voice.wake_model, stt=voice.stt), backend, tools)
+    return VoiceBridge(lambda: load_voice_models(wake_model=voice.wake_model, stt=voice.stt,
+                                                         wake_phases=voice.wake_phases), backend, tools)

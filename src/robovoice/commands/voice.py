@@ -165,7 +165,8 @@ async def _demo(args: argparse.Namespace) -> int:
     printer.line("loading the voice models, the robot and the language model ...")
     config = config_from_args(args)
     backend = backend_from_args(args, config)
-    models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=config.voice.stt)
+    models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=config.voice.stt,
+                                         wake_phases=config.voice.wake_phases)
 
     def on_step(event: StepStarted | StepChecked) -> None:
         step = event.step
@@ -245,7 +246,8 @@ async def _assist(args: argparse.Namespace) -> int:
             raise ConfigError(f"--record {args.record}: no folder {args.record.parent}; create it first")
     target = robot_config_from_args(args, config)
     printer.line("loading the voice models ...")
-    models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=stt)
+    models = await asyncio.to_thread(load_voice_models, wake_model=config.voice.wake_model, stt=stt,
+                                         wake_phases=config.voice.wake_phases)
     try:
         async with connect_robot(target) as link:
             await warm_up(backend, await link.tools.specs())

@@ -89,5 +89,6 @@ async def open_clip_runner(
     """Load the voice models (unless given) and yield the clip runner for audio cases."""
     settings = (config or Config()).voice
     if models is None:
-        models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model, stt=settings.stt)
+        models = await asyncio.to_thread(load_voice_models, wake_model=settings.wake_model, stt=settings.stt,
+                                           wake_phases=settings.wake_phases)
     yield VoiceClipRunner(models, PipelineConfig.from_config(settings), speed, record_dir=record_dir)

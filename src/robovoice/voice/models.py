@@ -39,7 +39,7 @@ class VoiceModels:
 
 def load_voice_models(
     *, wake_model: str = "hey_jarvis", stt: str = "whisper", stt_threads: int | None = None,
-    tts_threads: int | None = None,
+    tts_threads: int | None = None, wake_phases: int = 8,
 ) -> VoiceModels:
     """Load the shipped models: openWakeWord (twice: the microphone's and the playback's
     detector), Silero VAD, Whisper tiny.en (or Moonshine with ``stt="moonshine"``, none
@@ -52,8 +52,8 @@ def load_voice_models(
 
     started = time.perf_counter()
     with ThreadPoolExecutor(max_workers=4, thread_name_prefix="voice-load") as pool:
-        wake = pool.submit(OpenWakeWordDetector, wake_model)
-        playback_wake = pool.submit(OpenWakeWordDetector, wake_model)
+        wake = pool.submit(OpenWakeWordDetector, wake_model, phases=wake_phases)
+        playback_wake = pool.submit(OpenWakeWordDetector, wake_model, phases=wake_phases)
         vad = pool.submit(SileroVAD)
         tts = pool.submit(PiperSynthesizer, intra_op_threads=tts_threads)
         transcriber: Future[Transcriber] | None = None
