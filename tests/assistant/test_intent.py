@@ -28,6 +28,10 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "Go to the kitchen with me.",
     "Turn the projector on.",
     "List the places you can drive to.",
+    # an imperative's shape around a verb no list has
+    "Waddle yourself down to the garden.",
+    "Amble across to the sofa, love.",
+    "Whack on the projector.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -51,6 +55,11 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Never mind about ringing Clara, I'll see her later.", ClauseKind.NEGATED),
     ("Can you send letters, or only pictures?", ClauseKind.ABILITY),  # kinds of thing
     ("Leave the call running.", ClauseKind.NEGATED),
+    # the same shape in the past, a gerund, a plural or with a subject is talk
+    ("Wandered over to the garden this morning.", ClauseKind.STATEMENT),
+    ("Came back to the flat at six.", ClauseKind.STATEMENT),
+    ("Lights on the landing are out again.", ClauseKind.STATEMENT),
+    ("They moved into the flat upstairs.", ClauseKind.STATEMENT),
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)

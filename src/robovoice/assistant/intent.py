@@ -199,6 +199,14 @@ _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNO
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
+# An imperative's shape around a verb no list has ("trundle over to the door", "wheel yourself
+# in", "crank up the projector"): a bare first word, then "yourself", a way to a place, or up/on/
+# off a thing. Not a pronoun, a past tense, a gerund or a plural ("went over to", "lights on the").
+_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|over|along|across|back|down|round|around|through|out) ){0,2}"
+                    r"(?:to|into|towards?) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) )")
+_NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
+                         r"our|their|someone|somebody|nobody|everyone|went|came|ran|drove|got|took|rode|fell|sat|"
+                         r"stood|left|\w+(?:ed|ing|[^s]s))$")
 
 
 # An utterance whose last request ends on a word that needs one after it was cut off
@@ -239,7 +247,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
-    if first in IMPERATIVES:
+    if first in IMPERATIVES or ((shape := _SHAPE.match(lowered)) and not _NOT_A_VERB.match(shape.group(1))):
         return ClauseKind.REQUEST
     if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
         return ClauseKind.QUESTION
