@@ -20,6 +20,7 @@ from robovoice.assistant.speech_guard import (
     TurnActions,
     claimed_action_in,
     figures_in,
+    in_first_person,
     invented_figure_in,
     speakable,
     unspeakable_in,
@@ -189,6 +190,15 @@ def _turn(*calls: tuple[str, dict[str, object], str | None]) -> TurnActions:
      "The projector is now on.", False),
     (_turn(("navigate_to", {"target": "garage"}, "unknown_target")), "On my way to the garage.", True),
     (_turn(("start_video_call", {"contact": "Ben"}, "not_requested")), "I won't call Ben.", False),  # a denial
+    # every call refused: what the robot is doing was never looked up, and is a guess
+    (_turn(("return_to_dock", {}, "not_requested")), "I am already at my charging dock.", True),
+    (_turn(("set_projector_power", {"on": True}, "not_requested")), "The projector is not turned on.", True),
+    (_turn(("navigate_to", {"target": "kitchen"}, "not_requested")), "I'm not moving.", True),
+    (_turn(("navigate_to", {"target": "kitchen"}, "not_requested")), "I'm not sure what you mean.", False),
+    # a failure's own message may say the state ("already in a call"); a look-up found it
+    (_turn(("start_video_call", {"contact": "Ben"}, "busy")), "You are already in a call.", False),
+    (_turn(("get_robot_pose", {}, None), ("navigate_to", {"target": "kitchen"}, "not_requested")),
+     "I am at my charging dock.", False),
 ])
 def test_a_claim_is_false_when_the_turn_did_not_do_it(actions: TurnActions, sentence: str, false: bool) -> None:
     assert (actions.false_claim(sentence) is not None) is false
@@ -231,3 +241,16 @@ async def test_a_guess_is_looked_up_once_only() -> None:
     ], "How much battery have you got?")
     assert len(server.requests) == 2 and not result.calls
     assert "percent" not in result.reply and result.reply  # neither guess said, but an answer
+
+
+@pytest.mark.parametrize(("sentence", "spoken"), [
+    ("The robot's battery is at 94% and charging.", "My battery is at 94% and charging."),
+    ("The robot is already at its charging dock.", "I am already at my charging dock."),
+    ("The robot can drive to the bathroom or the kitchen.", "I can drive to the bathroom or the kitchen."),
+    ("Right now the robot isn't moving.", "Right now I am not moving."),
+    ("The robot did not go to the front door.", "I did not go to the front door."),
+    ("I am in the kitchen.", "I am in the kitchen."),  # already its own voice
+    ("The robot vacuum is in the hallway.", "The robot vacuum is in the hallway."),  # another robot
+])
+def test_the_robot_speaks_of_itself_in_the_first_person(sentence: str, spoken: str) -> None:
+    assert in_first_person(sentence) == spoken

@@ -40,6 +40,7 @@ from robovoice.assistant.speech_guard import (
     ModelOnlyText,
     TurnActions,
     figures_in,
+    in_first_person,
     invented_figure_in,
     speakable,
 )
@@ -309,7 +310,7 @@ class Assistant:
         self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, model_only: ModelOnlyText,
         known: Collection[float], actions: TurnActions,
     ) -> bool:
-        """Say a sentence of the model's and keep it in `said`, unless it reads out words meant
+        """Say a sentence of the model's (in the first person) and keep it in `said`, unless it reads out words meant
         for the model only or tool-call syntax (`speech_guard`), gives a measured figure found
         nowhere in the conversation (`known`), or claims an action the turn did not do
         (`actions`): then it is neither said nor kept, and a turn left with nothing
@@ -319,6 +320,7 @@ class Assistant:
         if spoken is None:
             log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)
             return False
+        spoken = in_first_person(spoken)
         figure = invented_figure_in(spoken, known)
         if figure is not None:
             log.warning("not saying %r: %r is a figure nobody gave the model", sentence, figure)

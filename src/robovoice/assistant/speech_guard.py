@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.assistant.fit import names
-from robovoice.assistant.gate import model_only_texts
+from robovoice.assistant.gate import NOT_REQUESTED, model_only_texts
 from robovoice.assistant.prompt import STEP_HINTS, SYSTEM_PROMPT
 
 _TOOL_SYNTAX = re.compile(
@@ -163,6 +163,43 @@ def claimed_action_in(sentence: str) -> str | None:
     return found.group(0).strip() if found is not None else None
 
 
+# What the robot is, was or is not doing, said as a fact ("The projector is not turned on.", "I am
+# already at my charging dock."): after a turn whose every call was refused, the model was told
+# nothing of the robot's state, and such a sentence is a guess.
+_STATE = re.compile(
+    r"\b(?:is|are|am|'m|'s|was|were)(?:n't)?\s+(?:not\s+|no longer\s+)?(?:already\s+|still\s+|currently\s+|now\s+)?"
+    r"(?:at|in|on|off|moving|driving|charging|docked|connected|turned|switched|running|playing|stopped|parked)\b",
+    re.IGNORECASE,
+)
+
+
+def state_claimed_in(sentence: str) -> str | None:
+    """The words of `sentence` that state what the robot or a device is doing, or None."""
+    found = _STATE.search(sentence.replace("\u2019", "'"))
+    return found.group(0) if found is not None else None
+
+
+# A small model speaks of itself as its instructions name it, "the robot"; the robot says "I".
+_SELF = re.compile(r"\bthe robot(?:'s\b|\s+(is|isn't|has|hasn't|was|wasn't|does|doesn't|did|didn't|can|can't|cannot"
+                   r"|could|couldn't|will|won't|would|should|must|may|might|needs|wants)\b)", re.IGNORECASE)
+_FIRST_PERSON = {"is": "am", "isn't": "am not", "has": "have", "hasn't": "haven't", "does": "do", "doesn't": "don't",
+                 "needs": "need", "wants": "want"}
+
+
+def in_first_person(sentence: str) -> str:
+    """`sentence` with the robot's self in the first person: "The robot's battery is at 94%." ->
+    "My battery is at 94%.", "The robot is already at its dock." -> "I am already at my dock."."""
+    def first(match: re.Match[str]) -> str:
+        verb = match.group(1)
+        return "my" if verb is None else "I " + _FIRST_PERSON.get(verb.lower(), verb.lower())
+
+    out = _SELF.sub(first, sentence.replace("\u2019", "'"))
+    if out == sentence.replace("\u2019", "'"):
+        return sentence
+    out = re.sub(r"\bits\b", "my", out)  # "at its charging dock": the robot's own
+    return out[:1].upper() + out[1:]
+
+
 @dataclass(frozen=True, slots=True)
 class TurnActions:
     """What the turn's tool calls did so far, to tell a false claim from a true one. Before any
@@ -176,7 +213,12 @@ class TurnActions:
     read_only: Collection[str] = ()
 
     def false_claim(self, sentence: str) -> str | None:
-        """The words of `sentence` that claim an action this turn did not do, or None."""
+        """The words of `sentence` that claim an action this turn did not do, or that state what
+        the robot is doing after the check before acting refused every call of the turn; or None."""
+        if self.calls and all(r.error == NOT_REQUESTED for r in self.outcomes):
+            state = state_claimed_in(sentence)
+            if state is not None:
+                return state
         claim = claimed_action_in(sentence) if self.calls else None
         if claim is None:
             return None
