@@ -73,3 +73,22 @@ def test_text_test_sets_from_v4_are_fresh_and_forbid_every_actuation_where_nothi
             assert set(case.forbid) == ACTUATION, case.id
         if case.case_class == "compound":
             assert len(case.expect) >= 2, case.id
+
+
+@pytest.mark.parametrize("name", ["audio-test-2", "audio-test-3"])
+def test_later_audio_test_sets_have_their_clips_and_forbid_acting_where_nothing_was_asked(name: str) -> None:
+    cases = load_cases(DATA / f"{name}.jsonl")
+    assert Counter(str(c.case_class) for c in cases)["unintelligible"] >= 5
+    for case in cases:
+        assert case.audio is not None and case.audio.is_file(), case.id
+        with wave.open(str(case.audio)) as wf:
+            assert (wf.getnchannels(), wf.getsampwidth(), wf.getframerate()) == (1, 2, 16000), case.id
+        if case.case_class in ("unintelligible", "nowake", "negated", "mention", "ability"):
+            assert not case.expect and set(case.forbid) == ACTUATION, case.id
+
+
+def test_audio_case_files_run_the_sim_slow_enough_for_a_spoken_stop_during_a_drive() -> None:
+    from robovoice.commands.assistant import AUDIO_SIM_SPEED, eval_sim_speed
+
+    assert eval_sim_speed(load_cases(DATA / "audio-test-3.jsonl"), 10.0) == AUDIO_SIM_SPEED == 2.0
+    assert eval_sim_speed(load_cases(DATA / "text.jsonl"), 10.0) == 10.0

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from robovoice.voice.stop import is_stop_command
+from robovoice.voice.stop import is_stop_command, says_stop
 
 
 @pytest.mark.parametrize("text", ["Stop my robot!", "stop my robot", "Stop my robot now!", "Please stop my robot."])
@@ -25,3 +25,14 @@ def test_stop_my_something_else_is_not_a_stop(text: str) -> None:
 def test_a_stop_phrase_with_fillers_around_it_is_a_stop(text: str) -> None:
     # "robot" is a filler too: stripping it first used to leave "stop the", which is no stop
     assert is_stop_command(text)
+
+
+@pytest.mark.parametrize("text", ["Stop, man!", "No, no, stop!", "Oi! Stop there.", "Right, stop. Please."])
+def test_while_moving_a_stop_clause_of_its_own_is_a_stop(text: str) -> None:
+    assert says_stop(text) and not is_stop_command(text)
+
+
+@pytest.mark.parametrize("text", ["Don't stop, keep going.", "Stop? No, carry on.", "I told him to stop the car.",
+                                  "Go to the kitchen.", "Stop the call, please.", ""])
+def test_while_moving_carrying_on_or_other_words_are_not_a_stop(text: str) -> None:
+    assert not says_stop(text)

@@ -10,6 +10,7 @@ import logging
 import sys
 import threading
 import time
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TextIO
 
@@ -37,7 +38,7 @@ from robovoice.commands.common import (
 from robovoice.commands.signals import CancelOnSignals
 from robovoice.commands.text import one_line, shown_reply
 from robovoice.errors import ConfigError
-from robovoice.eval.cases import load_cases
+from robovoice.eval.cases import Case, load_cases
 from robovoice.eval.runner import CaseResult, run_eval
 
 
@@ -52,7 +53,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
     ev = subparsers.add_parser(
         "eval", help="run an evaluation case file (DESIGN.md §6) and report accuracy and latency",
-        description="Runs each case with a fresh robot and conversation. Exit status 0 whatever the score.")
+        description="Runs each case with a fresh robot and conversation. Exit status 0 whatever the score. "
+                    "A file with audio cases runs the sim at 2x unless --sim-speed is given.")
     ev.add_argument("file", type=Path, help="a JSON Lines case file")
     add_robot_args(ev, default_speed=10.0)
     add_llm_args(ev)
@@ -166,6 +168,15 @@ def _print_case(result: CaseResult) -> None:
           file=sys.stderr, flush=True)
 
 
+AUDIO_SIM_SPEED = 2.0
+
+
+def eval_sim_speed(cases: Sequence[Case], default: float) -> float:
+    """The sim's speed when --sim-speed is not given: audio cases play in real time, and at 10x
+    the "driving" setup's drive reaches its place (about 2 s) before a spoken stop is over."""
+    return AUDIO_SIM_SPEED if any(c.audio is not None for c in cases) else default
+
+
 async def _eval(args: argparse.Namespace) -> int:
     cases = load_cases(args.file)
     if args.only:
@@ -178,6 +189,7 @@ async def _eval(args: argparse.Namespace) -> int:
     if args.record is not None and not args.record.is_dir():
         raise ConfigError(f"--record {args.record}: no such folder; create it first")
     config = config_from_args(args)
+    args.default_sim_speed = eval_sim_speed(cases, args.default_sim_speed)
     robot = robot_config_from_args(args, config)
     backend = backend_from_args(args, config)
     audio = None

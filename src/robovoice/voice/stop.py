@@ -50,3 +50,19 @@ def _fillers_only(tokens: list[str]) -> bool:
         if k in ends:
             ends.update(k + len(f) for f in _FILLER_WORDS if tokens[k : k + len(f)] == f)
     return len(tokens) in ends
+
+
+_CLAUSE: Final = re.compile(r"[,.;:!?]+")
+_CARRY_ON: Final = re.compile(r"\b(?:don'?t|do not|never|no need to|not) stop\b|\bkeep (?:going|moving|driving)\b"
+                              r"|\bcarry on\b", re.IGNORECASE)
+
+
+def says_stop(text: str) -> bool:
+    """For a short utterance without the wake word while the robot moves: a stop command, or a
+    transcript with one as a clause of its own and nothing saying to carry on ("Stop, man!" is
+    how Whisper hears a quick "Stop there!"; "No, no, stop!"). A needless stop costs less than
+    a missed one; with the wake word, `is_stop_command` alone decides (the rest is the model's)."""
+    if is_stop_command(text):
+        return True
+    return not _CARRY_ON.search(text) and any(is_stop_command(part) for part in _CLAUSE.split(text))
+

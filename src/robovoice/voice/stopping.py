@@ -2,7 +2,7 @@
 
 `StopController.check` is a stop check: a short utterance heard without the wake word while
 the robot moves, transcribed with the stop words as the hint and matched against the stop
-grammar (`stop.is_stop_command`). `check_pause` makes the same check on the speculative
+grammar (`stop.says_stop`). `check_pause` makes the same check on the speculative
 transcript at the utterance's first pause, so a stop acts without waiting for the end-of-turn
 silence (whatever follows a "stop" cannot make stopping wrong); a stop is made once per
 utterance, by whichever check gets there first. `StopController.stop` stops the robot: it cancels the turn
@@ -31,7 +31,7 @@ from robovoice.voice.lastword import last_word_end
 from robovoice.voice.listener import HeardPause, HeardUtterance
 from robovoice.voice.roles import VoiceRoles
 from robovoice.voice.speech import SpeechOutput
-from robovoice.voice.stop import is_stop_command
+from robovoice.voice.stop import says_stop
 from robovoice.voice.utterance import OwnWords, Transcribing, Transcription, strip_wake_words
 from robovoice.voice.vocabulary import STOP_HINT
 
@@ -91,7 +91,7 @@ class StopController:
             return
         transcript, took_ms = transcription.result()
         text = transcript.text
-        if not is_stop_command(strip_wake_words(text, self.config.wake_phrase)) or self.own_words.contains(text):
+        if not says_stop(strip_wake_words(text, self.config.wake_phrase)) or self.own_words.contains(text):
             return
         metrics.stt_ms += took_ms
         metrics.mark("transcript")
@@ -106,7 +106,7 @@ class StopController:
             await report_ignored(self.emit, self.stats, "no_stt_for_stop_check", utt)
             return
         text = await self.stt.text_for(utt.audio, metrics, speculation, STOP_HINT)
-        if not is_stop_command(strip_wake_words(text, self.config.wake_phrase)):
+        if not says_stop(strip_wake_words(text, self.config.wake_phrase)):
             await report_ignored(self.emit, self.stats, "not_a_stop", utt, text)
             return
         if utt.playback_share > 0.3 and self.own_words.contains(text):
