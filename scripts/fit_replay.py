@@ -1,6 +1,7 @@
 """Replay the actuation calls of stored eval runs through the fit check (`assistant/fit.py`)
-with the sim robot's declared words: how many wanted calls it would refuse, and how many
-unwanted ones. No model runs; the calls are those the runs made.
+with the sim robot's declared words, and through the check that a listed argument was said
+(`fit.unsaid`): how many wanted calls each would refuse, and how many unwanted ones. No model
+runs; the calls are those the runs made.
 
     python scripts/fit_replay.py RUN.json [RUN.json ...]     # runs of `robovoice eval --json`
 
@@ -13,29 +14,35 @@ from __future__ import annotations
 import json
 import sys
 from pathlib import Path
+from typing import Any
 
-from robovoice.assistant.fit import fits, fitting_tools
+from robovoice.assistant.fit import fits, fitting_tools, unsaid
 from robovoice.assistant.intent import read_request
 from robovoice.manifest.loader import load_manifest_dir
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _declared() -> dict[str, tuple[str, ...]]:
+def _tools() -> dict[str, Any]:
     loaded = load_manifest_dir(ROOT / "src/robovoice/sim/manifests")
-    return {tool.name: tool.voice.words for item in loaded.manifests.values() for tool in item.manifest.tools
-            if tool.voice is not None and tool.voice.words}
+    return {tool.name: tool for item in loaded.manifests.values() for tool in item.manifest.tools}
+
+
+def _declared() -> dict[str, tuple[str, ...]]:
+    return {name: tool.voice.words for name, tool in _tools().items() if tool.voice is not None and tool.voice.words}
 
 
 def main(runs: list[str]) -> None:
     declared = _declared()
+    tools = _tools()
     cases = {}
     for path in sorted((ROOT / "tests/data/eval").glob("text*.jsonl")):
         for line in path.read_text(encoding="utf-8").splitlines():
             if line.strip():
                 case = json.loads(line)
                 cases[case["id"]] = case
-    counts = {"wanted, fits": 0, "wanted, refused": 0, "unwanted, fits": 0, "unwanted, refused": 0}
+    counts = {"wanted, fits": 0, "wanted, refused": 0, "unwanted, fits": 0, "unwanted, refused": 0,
+              "wanted, argument unsaid": 0, "unwanted, argument unsaid": 0}
     seen = set()
     for run in runs:
         for result in json.loads(Path(run).read_text(encoding="utf-8"))["results"]:
@@ -54,6 +61,13 @@ def main(runs: list[str]) -> None:
                 fit = fits(intent, call["tool"], declared[call["tool"]], call["args"])
                 label = ("wanted" if call["tool"] in wanted else "unwanted") + (", fits" if fit else ", refused")
                 counts[label] += 1
+                tool = tools[call["tool"]]
+                missing = unsaid(tool.description, tool.parameters or {}, call["args"], intent.words()) if fit else []
+                if missing:
+                    label = ("wanted" if call["tool"] in wanted else "unwanted") + ", argument unsaid"
+                    counts[label] += 1
+                    print(f"{label:26} {result['id']:18} {call['tool']}{call['args']}  {case['text']!r}")
+                    continue
                 if label in ("wanted, refused", "unwanted, fits", "unwanted, refused"):
                     others = fitting_tools(intent, declared, call["tool"])
                     print(f"{label:18} {result['id']:18} {call['tool']}{call['args']}  {case['text']!r}  "

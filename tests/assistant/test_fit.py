@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from robovoice.assistant.fit import fits, fitting_tools, stem
-from robovoice.assistant.gate import NOT_REQUESTED, OTHER, refusal
+from robovoice.assistant.fit import fits, fitting_tools, stem, unsaid
+from robovoice.assistant.gate import NOT_REQUESTED, OTHER, UNCLEAR, refusal
 from robovoice.assistant.intent import read_request
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.loader import load_manifest_dir
@@ -23,7 +23,14 @@ def _sim_voice() -> dict[str, VoiceDecl]:
             if tool.voice is not None}
 
 
+def _sim_specs() -> dict[str, ToolSpec]:
+    loaded = load_manifest_dir(MANIFESTS)
+    return {tool.name: ToolSpec(tool.name, tool.description, tool.parameters or {})
+            for item in loaded.manifests.values() for tool in item.manifest.tools}
+
+
 VOICE = _sim_voice()
+SPECS = _sim_specs()
 WORDS = {name: section.words for name, section in VOICE.items()}
 
 
@@ -89,3 +96,33 @@ def test_the_gate_refuses_a_tool_nobody_asked_for_and_names_what_fits() -> None:
     assert "return_to_dock" in body["hint"]
     assert refusal(read_request("Turn the projector on."), spec, {"on": True}, (), VOICE) is None
     assert refusal(read_request("You look tired, go and charge."), spec, {"on": True}) is None  # no words known
+
+
+@pytest.mark.parametrize(("text", "tool", "arguments", "missing"), [
+    ("Get car on a video call.", "start_video_call", {"contact": "Anna"}, ["Anna"]),  # Clara, misheard
+    ("Ring my sun.", "start_video_call", {"contact": "Dr. Weber"}, ["Dr. Weber"]),
+    ("Ring my son.", "start_video_call", {"contact": "Ben"}, []),  # "Ben (son)" in the tool's description
+    ("Could you ring the doctor?", "start_video_call", {"contact": "Dr. Weber"}, []),
+    ("Give my neighbor a call.", "start_video_call", {"contact": "Clara"}, []),
+    ("Go man.", "navigate_to", {"target": "kitchen"}, ["kitchen"]),  # garbled: nobody said a place
+    ("Off to bed with you.", "navigate_to", {"target": "bedroom"}, []),  # "bed" begins "bedroom"
+    ("Go and get yourself charged.", "navigate_to", {"target": "charging dock"}, []),
+])
+def test_a_listed_argument_must_be_named_by_somebody(
+        text: str, tool: str, arguments: dict[str, object], missing: list[str]) -> None:
+    spec = SPECS[tool]
+    assert unsaid(spec.description, spec.parameters, arguments, read_request(text).words()) == missing
+
+
+def test_an_argument_named_earlier_in_the_conversation_counts_and_free_text_is_not_checked() -> None:
+    spec = SPECS["start_video_call"]
+    assert unsaid(spec.description, spec.parameters, {"contact": "Anna"}, ["call", "her", "anna"]) == []
+    free = {"type": "object", "properties": {"text": {"type": "string"}}}
+    assert unsaid("Say something.", free, {"text": "hello there"}, ["say", "hi"]) == []
+
+
+def test_the_gate_asks_rather_than_calls_someone_nobody_named() -> None:
+    spec = SPECS["start_video_call"]
+    body = refusal(read_request("Get car on a video call, please."), spec, {"contact": "Anna"}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == UNCLEAR and "ask them" in body["hint"]
+    assert refusal(read_request("Get Clara on a video call, please."), spec, {"contact": "Clara"}, (), VOICE) is None

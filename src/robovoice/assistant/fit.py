@@ -16,18 +16,20 @@ the conversation before it, which says what the "yes" is for.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from typing import Any
 
 from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import words
 
-_SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus"}
+_SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus", "neighbor": "neighbour"}
 _BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
 
 
 def usual(names: Iterable[str]) -> set[str]:
-    """The words as said aloud, without a possessive: "dr" is "doctor", "son's" is "son"."""
+    """The words as said aloud, without a possessive: "dr" is "doctor", "son's" is "son" (and a
+    "neighbor" the same as a "neighbour")."""
     return {_SHORT_FORMS.get(w.removesuffix("'s"), w.removesuffix("'s")) for w in names}
 
 
@@ -99,3 +101,38 @@ def fitting_tools(intent: Intent, declared: Mapping[str, Sequence[str]], but: st
     what the person may have meant instead."""
     return sorted(name for name, phrases in declared.items()
                   if name != but and phrases and fits(intent, name, phrases, {}))
+
+
+# --- arguments somebody said -------------------------------------------------------------------
+
+_FUNCTION_WORDS = frozenset({"the", "a", "an", "of", "my", "your", "to", "in", "on", "at", "and"})
+
+
+def _names_for(value: str, description: str) -> set[str]:
+    """The stems that name `value`: its own words as said aloud ("doctor" for "Dr."), and a
+    description's gloss in brackets right after it ("Anna (daughter)": "daughter")."""
+    own = usual(words(value))
+    gloss = re.search(re.escape(value) + r"\s*\(([^)]*)\)", description, re.IGNORECASE)
+    glossed = set(words(gloss.group(1))) if gloss is not None else set()
+    return {stem(w) for w in (own | glossed) - _FUNCTION_WORDS}
+
+
+def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
+           heard: Iterable[str]) -> list[str]:
+    """The values of the call's listed arguments (a schema property with ``enum`` or
+    ``examples``: places, contacts) that nobody named in what was said (`heard`: the
+    conversation's words and this utterance's): "get car on a video call" became Anna, "ring my
+    sun" Dr. Weber, a garbled "Go man." the kitchen. A stem that begins another counts ("bed"
+    names the bedroom); free text (a message) is not checked."""
+    said = {stem(w) for w in usual(heard)}
+    listed = {name for name, schema in (parameters.get("properties") or {}).items()
+              if isinstance(schema, Mapping) and (schema.get("enum") or schema.get("examples"))}
+    missing = []
+    for name, value in arguments.items():
+        if name not in listed or not isinstance(value, str) or not value.strip():
+            continue
+        names = _names_for(value, description)
+        if names and not any(n == s or (len(s) >= 3 and n.startswith(s)) for n in names for s in said):
+            missing.append(value)
+    return missing
+

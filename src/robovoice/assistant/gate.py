@@ -23,7 +23,7 @@ import re
 from collections.abc import Collection, Mapping
 from typing import Any
 
-from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, usual
+from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, unsaid, usual
 from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.llm.base import ToolSpec
@@ -121,6 +121,8 @@ def refusal(
             why = UNCLEAR
         elif not fits(intent, name, declared.get(name, ()), arguments, said):
             why = OTHER  # "plug yourself in" and the projector
+        elif spec is not None and unsaid(spec.description, spec.parameters, arguments, [*said, *intent.words()]):
+            why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
         else:
             return None
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)

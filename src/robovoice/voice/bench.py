@@ -256,7 +256,7 @@ async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels |
     from robovoice.voice.models import load_voice_models
 
     if models is None:
-        models = await asyncio.to_thread(load_voice_models)
+        models = await asyncio.to_thread(load_voice_models, wake_phases=(voice or VoiceConfig()).wake_phases)
     said = [commands[i % len(commands)] for i in range(turns)]
     audio = {text: concat([convert(models.tts.synthesize(text), MODEL_FORMAT), make_silence(MODEL_FORMAT, 0.1)])
              for text in set(said)}
