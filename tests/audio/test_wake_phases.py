@@ -7,7 +7,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from robovoice.audio.wake import OpenWakeWordDetector
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk
+from robovoice.audio.wake import OpenWakeWordDetector, WakeWordSpotter
 from robovoice.audio.wav import read_wav
 from robovoice.config import load_config
 from robovoice.errors import ConfigError
@@ -81,3 +82,21 @@ def test_the_config_key_names_the_field_and_the_values(tmp_path: Path) -> None:
     path.write_text("[voice]\nwake_phases = 1\n", encoding="utf-8")
     assert load_config(path).voice.wake_phases == 1
     assert load_config(None).voice.wake_phases == 8
+
+
+
+def test_after_a_detection_only_one_offset_is_scored_while_no_second_can_come(borderline: np.ndarray) -> None:
+    """The spotter holds the other offsets off for its refractory period after a detection, so
+    the command said after the wake phrase does not wait on CPU spent looking for it again."""
+    audio = np.concatenate((borderline, shifted(borderline, 3)))
+    plain = scores(OpenWakeWordDetector(phases=1), audio)
+    always = scores(OpenWakeWordDetector(phases=8, phase_gate=0.0), audio)
+    spotter = WakeWordSpotter(OpenWakeWordDetector(phases=8))
+    spotter.reset()
+    got, fired = [], []
+    for n, start in enumerate(range(0, len(audio) - 1279, 1280)):
+        fired += [n] * len(spotter.feed(AudioChunk(audio[start : start + 1280], MODEL_FORMAT, start / 16000)))
+        got.append(spotter.last_score)
+    held = slice(fired[0] + 1, fired[0] + 26)  # the 2 s refractory period
+    assert got[held] == pytest.approx(plain[held], abs=1e-6)
+    assert always[held] != pytest.approx(plain[held], abs=1e-6)  # unheld, the other offsets would score

@@ -187,8 +187,10 @@ class OpenWakeWordDetector:
     the score is the highest over all 8 offsets (1, 2, 4 or 8 evenly spaced). The other
     offsets cost ~1.1 ms each per frame, so they are only scored while the plain score has
     reached `phase_gate` in the last 1.5 s (about 1 % of frames of continuous speech and
-    noise); when the gate opens their 1.3 s feature history is embedded at once from the
-    kept mel frames, which gives exactly the scores of running them all the time.
+    noise), and not during the refractory period after a detection (`hold_off`, called by
+    `WakeWordSpotter`), when the command is being said. When the gate opens, their 1.3 s
+    feature history is embedded at once from the kept mel frames, which gives exactly the
+    scores of running them all the time.
     """
 
     frame_samples: int = WAKE_FRAME_SAMPLES
@@ -253,6 +255,7 @@ class OpenWakeWordDetector:
         self._features = self._initial_features.copy()
         self._phase_features: np.ndarray | None = None  # (offsets, window, dim) while the gate is open
         self._open_until = 0
+        self._held_until = 0
         self._frames_since_reset = 0
 
     def process(self, frame: Samples) -> float:
@@ -266,13 +269,20 @@ class OpenWakeWordDetector:
         score = self._classify(self._features)
         self._frames_since_reset += 1
         if self._offsets:
-            if score >= self._gate:
+            if score >= self._gate and self._frames_since_reset > self._held_until:
                 self._open_until = self._frames_since_reset + _PHASE_HOLD
             if self._frames_since_reset <= self._open_until:
                 score = max(score, self._other_phases())
             else:
                 self._phase_features = None
         return 0.0 if self._frames_since_reset <= self._warmup else score
+
+    def hold_off(self, seconds: float) -> None:
+        """Score one offset only for `seconds`: the phrase was just heard, and the command
+        that follows it should not wait on CPU spent looking for it again."""
+        self._held_until = self._frames_since_reset + round(seconds / 0.08)
+        self._open_until = 0
+        self._phase_features = None
 
     def _classify(self, features: np.ndarray) -> float:
         out = self._classifier.run(None, {self._input_name: features[None, :, :]})[0]
@@ -324,6 +334,9 @@ class WakeWordSpotter:
             if event is not None:
                 logger.info("wake word detected (score %.3f) at %.2f s", event.score, event.timestamp)
                 events.append(event)
+                hold_off = getattr(self.detector, "hold_off", None)  # no second detection can come sooner
+                if hold_off is not None:
+                    hold_off(self.decider.config.refractory_s)
         return events
 
     def reset(self) -> None:
