@@ -28,13 +28,13 @@ def _tools() -> dict[str, Any]:
     return {tool.name: tool for item in loaded.manifests.values() for tool in item.manifest.tools}
 
 
-def _declared() -> dict[str, tuple[str, ...]]:
-    return {name: tool.voice.words for name, tool in _tools().items() if tool.voice is not None and tool.voice.words}
+def _declared(tools: dict[str, Any]) -> dict[str, tuple[str, ...]]:
+    return {name: tool.voice.words for name, tool in tools.items() if tool.voice is not None and tool.voice.words}
 
 
 def main(runs: list[str]) -> None:
-    declared = _declared()
     tools = _tools()
+    declared = _declared(tools)
     cases = {}
     for path in sorted((ROOT / "tests/data/eval").glob("text*.jsonl")):
         for line in path.read_text(encoding="utf-8").splitlines():

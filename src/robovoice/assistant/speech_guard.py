@@ -193,8 +193,9 @@ def in_first_person(sentence: str) -> str:
         verb = match.group(1)
         return "my" if verb is None else "I " + _FIRST_PERSON.get(verb.lower(), verb.lower())
 
-    out = _SELF.sub(first, sentence.replace("\u2019", "'"))
-    if out == sentence.replace("\u2019", "'"):
+    plain = sentence.replace("\u2019", "'")
+    out = _SELF.sub(first, plain)
+    if out == plain:
         return sentence
     out = re.sub(r"\bits\b", "my", out)  # "at its charging dock": the robot's own
     return out[:1].upper() + out[1:]

@@ -280,7 +280,7 @@ class OpenWakeWordDetector:
     def hold_off(self, seconds: float) -> None:
         """Score one offset only for `seconds`: the phrase was just heard, and the command
         that follows it should not wait on CPU spent looking for it again."""
-        self._held_until = self._frames_since_reset + round(seconds / 0.08)
+        self._held_until = self._frames_since_reset + round(seconds * MODEL_FORMAT.rate / WAKE_FRAME_SAMPLES)
         self._open_until = 0
         self._phase_features = None
 
