@@ -14,8 +14,16 @@ def test_what_whisper_hears_for_stop_the_robot_is_a_stop(text: str) -> None:
     assert is_stop_command(text)
 
 
+@pytest.mark.parametrize("text", ["Stop one robot!", "Stop when robot!", "Stop one of the robot!",
+                                  "Stop that robot!", "Hold it right there!", "Hold it!"])
+def test_a_misheard_determiner_or_hold_it_is_a_stop(text: str) -> None:
+    # how Whisper heard Piper's "Stop the robot!" with the robot's "One moment." over it
+    assert is_stop_command(text)
+
+
 @pytest.mark.parametrize("text", ["Stop my call.", "Stop my music.", "Don't stop my robot.",
-                                  "Stop my robot at the kitchen."])
+                                  "Stop my robot at the kitchen.", "Stop the kitchen robot.",
+                                  "Stop the robot's music."])
 def test_stop_my_something_else_is_not_a_stop(text: str) -> None:
     assert not is_stop_command(text)
 
@@ -33,6 +41,6 @@ def test_while_moving_a_stop_clause_of_its_own_is_a_stop(text: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["Don't stop, keep going.", "Stop? No, carry on.", "I told him to stop the car.",
-                                  "Go to the kitchen.", "Stop the call, please.", ""])
+                                  "Go to the kitchen.", "Stop the call, please.", "Hold it up to the light.", ""])
 def test_while_moving_carrying_on_or_other_words_are_not_a_stop(text: str) -> None:
     assert not says_stop(text)

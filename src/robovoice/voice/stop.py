@@ -2,9 +2,9 @@
 
 A transcript is a stop command when, after removing punctuation, the wake phrase and a few
 fillers ("please", "now", "robot", "okay", ...), nothing is left but a stop phrase ("stop",
-"stop the robot", "halt", "stop moving", "freeze", repeated or not; "stop my robot", as Whisper
-tiny.en hears the soak's "Stop the robot!"). Anything more ("stop
-the call", "don't stop", "stop at the kitchen") is not: that is for the model.
+"stop the robot", "halt", "stop moving", "freeze", "hold it right there", repeated or not;
+"stop my robot" or "stop one of the robot", as Whisper tiny.en hears "Stop the robot!").
+Anything more ("stop the call", "don't stop", "stop at the kitchen") is not: that is for the model.
 """
 
 from __future__ import annotations
@@ -13,9 +13,14 @@ import re
 from typing import Final
 
 STOP_PHRASES: Final = frozenset({
-    "stop", "halt", "freeze", "stop the robot", "stop robot", "stop my robot", "stop moving", "stop driving", "stop it",
-    "stop right there", "stop there", "stop now", "stop right now", "emergency stop", "stop stop",
+    "stop", "halt", "freeze", "stop the robot", "stop robot", "stop moving", "stop driving", "stop it",
+    "stop right there", "stop there", "stop now", "stop right now", "emergency stop", "stop stop", "hold it",
+    "hold it right there",
 })  # fmt: skip
+# With the robot's own voice over it, Whisper tiny.en garbles the little word of "stop the
+# robot" ("Stop my robot!", "Stop one robot!", "Stop when robot!", "Stop one of the robot!"):
+# "stop", up to three short words, "robot" is still a stop
+_STOP_THE_ROBOT: Final = re.compile(r"(?:stop|halt)(?: [a-z]{1,4}){0,3} robot")
 _FILLERS: Final = ("please", "right now", "now", "immediately", "okay", "ok", "hey", "jarvis", "robot",
                    "oh", "hey robot", "you")  # fmt: skip
 _FILLER_WORDS: Final = tuple(f.split() for f in _FILLERS)
@@ -38,7 +43,9 @@ def is_stop_command(text: str) -> bool:
     # robot right now"); "robot" is a filler but also part of "stop the robot", so every span is tried
     for i in range(len(tokens)):
         for j in range(i + 1, len(tokens) + 1):
-            if " ".join(tokens[i:j]) in STOP_PHRASES and _fillers_only(tokens[:i]) and _fillers_only(tokens[j:]):
+            span = " ".join(tokens[i:j])
+            stop_span = span in STOP_PHRASES or _STOP_THE_ROBOT.fullmatch(span)
+            if stop_span and _fillers_only(tokens[:i]) and _fillers_only(tokens[j:]):
                 return True
     return all(t in ("stop", "halt") for t in tokens)
 
