@@ -107,6 +107,9 @@ def test_the_gate_refuses_a_tool_nobody_asked_for_and_names_what_fits() -> None:
     ("Go man.", "navigate_to", {"target": "kitchen"}, ["kitchen"]),  # garbled: nobody said a place
     ("Off to bed with you.", "navigate_to", {"target": "bedroom"}, []),  # "bed" begins "bedroom"
     ("Go and get yourself charged.", "navigate_to", {"target": "charging dock"}, []),
+    ("Take me over to the, um, that room.", "navigate_to", {"target": "living room"}, ["living room"]),  # 3 rooms
+    ("Go to the living room.", "navigate_to", {"target": "living room"}, []),
+    ("Go to the door.", "navigate_to", {"target": "front door"}, []),  # the only door
 ])
 def test_a_listed_argument_must_be_named_by_somebody(
         text: str, tool: str, arguments: dict[str, object], missing: list[str]) -> None:

@@ -123,16 +123,24 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
     ``examples``: places, contacts) that nobody named in what was said (`heard`: the
     conversation's words and this utterance's): "get car on a video call" became Anna, "ring my
     sun" Dr. Weber, a garbled "Go man." the kitchen. A stem that begins another counts ("bed"
-    names the bedroom); free text (a message) is not checked."""
+    names the bedroom), unless it is part of another listed value too ("that room" names none
+    of the living room, the bedroom, the bathroom); free text (a message) is not checked."""
     said = {stem(w) for w in usual(heard)}
-    listed = {name for name, schema in (parameters.get("properties") or {}).items()
+    listed = {name: [str(v) for v in (schema.get("enum") or schema.get("examples"))]
+              for name, schema in (parameters.get("properties") or {}).items()
               if isinstance(schema, Mapping) and (schema.get("enum") or schema.get("examples"))}
     missing = []
     for name, value in arguments.items():
         if name not in listed or not isinstance(value, str) or not value.strip():
             continue
         names = _names_for(value, description)
-        if names and not any(n == s or (len(s) >= 3 and n.startswith(s)) for n in names for s in said):
+        others = [n for v in listed[name] if v.lower() != value.lower() for n in _names_for(v, description)]
+        if names and not any(_names(s, names) and not any(s in n for n in others) for s in said):
             missing.append(value)
     return missing
+
+
+def _names(said: str, names: Collection[str]) -> bool:
+    """The said stem is one of `names`, or (3 letters or more) begins one."""
+    return any(n == said or (len(said) >= 3 and n.startswith(said)) for n in names)
 
