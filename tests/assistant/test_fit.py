@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from robovoice.assistant.fit import fits, fitting_tools, stem, unsaid
-from robovoice.assistant.gate import NOT_REQUESTED, OTHER, UNCLEAR, refusal
+from robovoice.assistant.gate import NOT_REQUESTED, OTHER, UNCLEAR, question, refusal
 from robovoice.assistant.intent import read_request
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.loader import load_manifest_dir
@@ -128,4 +128,10 @@ def test_the_gate_asks_rather_than_calls_someone_nobody_named() -> None:
     spec = SPECS["start_video_call"]
     body = refusal(read_request("Get car on a video call, please."), spec, {"contact": "Anna"}, (), VOICE)
     assert body is not None and body["details"]["reason"] == UNCLEAR and "ask them" in body["hint"]
+    assert question(body) == "Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
     assert refusal(read_request("Get Clara on a video call, please."), spec, {"contact": "Clara"}, (), VOICE) is None
+    there = refusal(read_request("Go over there."), SPECS["navigate_to"], {"target": "kitchen"}, (), VOICE)
+    assert there is not None and question(there) == ("Which one do you mean: kitchen, living room, bedroom, "
+                                                      "bathroom, hallway, front door or charging dock?")
+    negated = refusal(read_request("Don't call Anna."), spec, {"contact": "Anna"}, (), VOICE)
+    assert negated is not None and question(negated) is None  # nothing to choose: it was declined

@@ -166,3 +166,20 @@ async def test_a_claim_of_a_refused_call_beside_an_action_that_ran_is_not_said()
         "Put the projector on and then ring him.")
     assert [o.error for o in result.outcomes] == [None, NOT_REQUESTED]
     assert "call" not in result.reply and result.reply.endswith("The projector is now on.")
+
+
+async def test_a_call_to_someone_nobody_named_is_asked_about_not_made_and_the_answer_is_acted_on() -> None:
+    """"Put me on a video call": the model picks Anna. The call is refused, and the robot asks
+    whom, naming the contacts, without a second model step (asked again, the embedded model
+    made the same call). The person's answer is the next turn's request."""
+    script: list[ScriptedReply] = [call("start_video_call", contact="Anna"), call("start_video_call", contact="Ben")]
+    async with scripted_sim(script) as (robot, server, backend):
+        assistant = Assistant(backend, robot.tools)
+        asked = await assistant.turn("Put me on a video call, would you?")
+        assert robot.sim is not None and robot.sim.state.call_contact is None
+        assert len(server.requests) == 1
+        answered = await assistant.turn("Ben, please.")
+        assert robot.sim.state.call_contact == "Ben"
+    assert [o.error for o in asked.outcomes] == [NOT_REQUESTED]
+    assert asked.reply == "Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
+    assert [(c.name, c.arguments) for c in answered.calls] == [("start_video_call", {"contact": "Ben"})]

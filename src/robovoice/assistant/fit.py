@@ -126,18 +126,23 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
     names the bedroom), unless it is part of another listed value too ("that room" names none
     of the living room, the bedroom, the bathroom); free text (a message) is not checked."""
     said = {stem(w) for w in usual(heard)}
-    listed = {name: [str(v) for v in (schema.get("enum") or schema.get("examples"))]
-              for name, schema in (parameters.get("properties") or {}).items()
-              if isinstance(schema, Mapping) and (schema.get("enum") or schema.get("examples"))}
+    choices = listed(parameters)
     missing = []
     for name, value in arguments.items():
-        if name not in listed or not isinstance(value, str) or not value.strip():
+        if name not in choices or not isinstance(value, str) or not value.strip():
             continue
         names = _names_for(value, description)
-        others = [n for v in listed[name] if v.lower() != value.lower() for n in _names_for(v, description)]
+        others = [n for v in choices[name] if v.lower() != value.lower() for n in _names_for(v, description)]
         if names and not any(_names(s, names) and not any(s in n for n in others) for s in said):
             missing.append(value)
     return missing
+
+
+def listed(parameters: Mapping[str, Any]) -> dict[str, list[str]]:
+    """The arguments whose schema lists their values (``enum`` or ``examples``), with the values."""
+    return {name: [str(v) for v in (schema.get("enum") or schema.get("examples"))]
+            for name, schema in (parameters.get("properties") or {}).items()
+            if isinstance(schema, Mapping) and (schema.get("enum") or schema.get("examples"))}
 
 
 def _names(said: str, names: Collection[str]) -> bool:

@@ -23,7 +23,7 @@ import re
 from collections.abc import Collection, Mapping
 from typing import Any
 
-from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, unsaid, usual
+from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, listed, unsaid, usual
 from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.llm.base import ToolSpec
@@ -67,6 +67,18 @@ _AFTER = {
 }
 
 
+def question(refused: Mapping[str, Any]) -> str | None:
+    """The robot's own question after a call refused as `UNCLEAR` whose argument lists its
+    values ("Which one do you mean: Anna, Ben, Clara or Dr. Weber?"), asked instead of another
+    model step (which on the embedded model tends to make the same call again); else None."""
+    details = refused.get("details")
+    choices = details.get("choices") if isinstance(details, Mapping) else None
+    if not isinstance(choices, list) or not choices or details.get("reason") != UNCLEAR:
+        return None
+    named = [str(c) for c in choices]
+    return "Which one do you mean: " + (", ".join(named[:-1]) + " or " if len(named) > 1 else "") + named[-1] + "?"
+
+
 def said_after(reason: str) -> str | None:
     """The robot's own words after a refusal for `reason` (None for a reason it has none for)."""
     return _AFTER.get(reason)
@@ -81,6 +93,21 @@ def model_only_texts() -> tuple[str, ...]:
     """The hints the gate gives the model: instructions for it, never words for the person
     (`speech_guard.ModelOnlyText` keeps a reply that reads them out from being spoken)."""
     return tuple(_HINTS.values())
+
+
+# Words that may ask the robot to stop or call off what it does although no clause reads as a
+# request ("Hold it! Stay put!", "never mind, don't go there after all"); only with one of them
+# does the robot's stop or cancel run on such words ("don't mind the mess in the bedroom",
+# said while it drove, cancelled the drive in text test v13)
+_HALTING = re.compile(r"\b(?:stop\w*|halt|hold|stay|wait|hang on|freeze|forget|never ?mind|chang\w* (?:my|your) mind"
+                      r"|don'?t (?:bother|go|move|drive)|enough|cancel\w*|call it off|after all|leave it|no further"
+                      r"|turn (?:back|round|around))\b", re.IGNORECASE)
+
+
+def halts(intent: Intent | None) -> bool:
+    """The words may ask the robot to stop or call off what it does, and do not say to carry on
+    ("keep going, don't stop"): then its stop or cancel runs even where nothing reads as a request."""
+    return intent is not None and not intent.carries_on and any(_HALTING.search(c.text) for c in intent.clauses)
 
 
 _BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)
@@ -128,9 +155,13 @@ def refusal(
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
     others = fitting_tools(intent, declared, name) if why == OTHER else []
     hint = _HINTS[why] + (f" What they asked for fits {' or '.join(others)}." if others else "")
+    # the values the person can choose from, for the question `question` asks
+    choices = [v for arg, values in listed(spec.parameters).items() if arg in arguments
+               for v in values] if why == UNCLEAR and spec is not None else []
     return {
         "error": NOT_REQUESTED,
         "message": f"not done: the user did not ask for {name} now ({why})",
         "hint": hint,
-        "details": {"tool": name, "reason": why, **({"fits": others} if others else {})},
+        "details": {"tool": name, "reason": why, **({"fits": others} if others else {}),
+                    **({"choices": choices} if choices else {})},
     }

@@ -179,7 +179,8 @@ _MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # 
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
-    r"^i(?:'d| would) like (?:you|to)\b|^i (?:want|need|wish)\b|^i'd love\b|^i(?:'d| would) love\b|"
+    r"^i(?:'d| would) like (?:you|to|the|my|a|an|some|it)\b|^i (?:want|need|wish)\b|^i(?:'d| would) love\b|"
+    r"^(?:all|what|the one thing) i(?:'d| would)? (?:really )?(?:want|need|like) (?:from you )?is\b|"
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
     r"^i(?:'m| am| was)? wonder(?:ing|ed)? (?:if|whether) you\b|^do you think you could\b|^if you (?:could|would)\b|"

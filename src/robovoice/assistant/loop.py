@@ -27,7 +27,7 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import refusal
+from robovoice.assistant.gate import halts, refusal
 from robovoice.assistant.intent import Intent, read_request
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
@@ -348,12 +348,11 @@ class Assistant:
         voice = self.tools.voice()
         refused = refusal(intent, spec, request.arguments, said, voice)
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
-                and not (intent is not None and intent.carries_on)):
-            # the robot's stop or cancel when the words asked for nothing new ("Hold it! Stay
-            # put!" read as talk, "never mind" during a drive): it runs unless the robot is known
-            # to stand still, where it would do nothing the person asked for ("Wait, don't call
-            # anyone." answered "I am standing still."), or the words say to carry on ("keep
-            # going, don't stop")
+                and halts(intent)):
+            # the robot's stop or cancel when the words asked for nothing new but may mean it
+            # ("Hold it! Stay put!" read as talk, "never mind" during a drive; `gate.halts`): it
+            # runs unless the robot is known to stand still, where it would do nothing the person
+            # asked for ("Wait, don't call anyone." answered "I am standing still.")
             refused = refused if await self._standing_still(voice) else None
         if refused is not None:  # the user did not ask for this: it never reaches the robot
             outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)

@@ -15,6 +15,10 @@ the answer to that step (docs/voice.md, "Spoken results"). It is used only when:
 - no call of the step is read-only: the model often looks something up (the battery, where
   the robot is) before it acts, and a phrase would end the turn before the action.
 
+A step whose every call was refused because the person named none of the values its argument
+lists ("put me on a video call") is answered by the robot's own question, which names them
+(`gate.question`): the model, asked again, tends to make the same call once more.
+
 A step of look-ups only is said by its phrases, question or not, while the turn goes on with
 more the person asked (`continuing`): the look-up was one of the things asked ("tell me where
 you are, then come here"), its phrase says what was found, and nothing ends there.
@@ -25,7 +29,7 @@ from __future__ import annotations
 from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
-from robovoice.assistant.gate import NOT_REQUESTED
+from robovoice.assistant.gate import NOT_REQUESTED, question
 from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.manifest.voice import VoiceDecl, fill, result_fields
 
@@ -58,6 +62,9 @@ def phrase_answer(
     read-only tools; `continuing`: the turn goes on with more the person asked."""
     if not step or intent is None:
         return None
+    asked = [question(r.result) for _, r in step if r.error == NOT_REQUESTED and r.result is not None]
+    if not continuing and len(asked) == len(step) and asked[-1] is not None:
+        return asked[-1]  # every call refused for a value nobody named: the robot asks which
     looked_up = all(called.name in read_only for called, _ in step)
     if not (continuing and looked_up) and (not asks_nothing(intent) or any(c.name in read_only for c, _ in step)):
         return None
