@@ -32,6 +32,11 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "Waddle yourself down to the garden.",
     "Amble across to the sofa, love.",
     "Whack on the projector.",
+    # a wish said as what the person wants (eleventh session: tests v13, audio v4)
+    "All I want is the projector on.",
+    "I'd like the projector switched on, please.",
+    "I only want to talk to Dr. Weber.",
+    "I just want you in the bedroom.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -60,6 +65,8 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Came back to the flat at six.", ClauseKind.STATEMENT),
     ("Lights on the landing are out again.", ClauseKind.STATEMENT),
     ("They moved into the flat upstairs.", ClauseKind.STATEMENT),
+    ("I just need a minute to find my glasses.", ClauseKind.STATEMENT),  # no "want": not a wish for the robot
+    ("Could you ring the doctor in an emergency? I just want to know you can.", ClauseKind.ABILITY),
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)

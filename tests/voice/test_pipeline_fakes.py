@@ -81,6 +81,20 @@ async def test_speech_without_wake_word_does_nothing(
     assert not s.sim.state.projector_on
 
 
+async def test_a_near_miss_of_the_wake_phrase_calling_someone_else_does_nothing(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    """The wake model fired on "Hey Charlie" (audio test v4's espeak voice drove to the front
+    door): the transcript shows the person called someone else, and nothing is done."""
+    transcriber.text = "Hey Charlie, go along to the front door, will you?"
+    async with voice_session(fakes, backend, speed=2.0) as s:
+        await s.say(wake_command())
+        ignored = await s.log.wait_for(UtteranceIgnored)
+        await s.settle()
+    assert ignored.reason == "addressed_elsewhere" and server.requests == []
+    assert not s.sim.state.moving and not s.log.of(VoiceTurnStarted)
+
+
 async def test_wake_word_alone_waits_for_the_command(
     fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
 ) -> None:

@@ -10,7 +10,7 @@ from robovoice.voice.config import SpeechConfig, TurnTakingConfig
 from robovoice.voice.progress import ProgressNarrator
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.turns import Action, Phase, TurnTaking
-from robovoice.voice.utterance import OwnWords, strip_wake_words
+from robovoice.voice.utterance import OwnWords, addressed_elsewhere, strip_wake_words
 
 from .voice_kit import sim_voice_roles
 
@@ -151,6 +151,20 @@ def test_long_actions_are_acknowledged_then_reported_at_most_every_interval() ->
 ])  # fmt: skip
 def test_wake_phrase_is_removed_from_the_transcript(heard: str, command: str) -> None:
     assert strip_wake_words(heard) == command
+
+
+@pytest.mark.parametrize(("heard", "elsewhere"), [
+    ("Hey Charlie, go along to the front door, will you?", True),  # audio test v4's near miss
+    ("Hello Anna, how are you?", True),
+    ("Hey Jarvis, go to the kitchen.", False),
+    ("Hey Travis, go to the kitchen.", False),  # the wake name misheard: still the phrase
+    ("Hey, I want the projector on.", False),
+    ("Hey, could you come here?", False),
+    ("Hey Robot, come here.", False),
+    ("Go to the kitchen.", False),
+])  # fmt: skip
+def test_a_transcript_calling_someone_else_by_name_is_addressed_elsewhere(heard: str, elsewhere: bool) -> None:
+    assert addressed_elsewhere(heard) is elsewhere
 
 
 def test_own_words_are_recognised_for_a_while() -> None:

@@ -180,6 +180,7 @@ _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
     r"^i(?:'d| would) like (?:you|to|the|my|a|an|some|it)\b|^i (?:want|need|wish)\b|^i(?:'d| would) love\b|"
+    r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
     r"^(?:all|what|the one thing) i(?:'d| would)? (?:really )?(?:want|need|like) (?:from you )?is\b|"
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
@@ -355,7 +356,8 @@ _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
 # unless it asks the robot for a call or to find something out ("…, I'd like to talk to Anna")
-_OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:really )?(?:want|need|wish|like|have|got) to (\w+)", re.IGNORECASE)
+_OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:(?:really|only|just) )?(?:want|need|wish|like|have|got) to (\w+)",
+                       re.IGNORECASE)
 # Taking back one thing by its name: "not Ben", "skip the kitchen", "leave Clara", "forget about the call".
 _NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|cancel)\s+((?:\w+\s*){1,3})$",
                        re.IGNORECASE)

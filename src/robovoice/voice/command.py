@@ -41,6 +41,7 @@ from robovoice.voice.utterance import (
     WAKE_PHRASE_S,
     Transcribing,
     Transcription,
+    addressed_elsewhere,
     strip_wake_words,
     trim_to_wake,
     wav_bytes,
@@ -170,6 +171,10 @@ class CommandTurn:
                     c.turns.rearm(utt.end)
                     await report_ignored(c.emit, c.stats, "wake_only" if verdict.wake_at is not None else "empty",
                                          utt, raw)
+                    return
+                if verdict.wake_at is not None and addressed_elsewhere(raw, c.config.wake_phrase):
+                    # "Hey Charlie, …": the wake word fired on a near miss; not for the robot
+                    await report_ignored(c.emit, c.stats, "addressed_elsewhere", utt, raw)
                     return
                 if is_stop_command(text):
                     await c.stopper.stop(text, utt.end, self.id, metrics)

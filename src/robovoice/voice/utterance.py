@@ -69,6 +69,24 @@ def _like(heard: str, said: str) -> bool:
     return difflib.SequenceMatcher(None, heard.lower(), said).ratio() >= 0.75
 
 
+_GREETINGS = frozenset({"hey", "hi", "hello", "hiya", "oi", "okay", "ok"})
+_NOT_NAMES = frozenset({"i", "i'm", "i'd", "i'll", "i've", "robot"})
+
+
+def addressed_elsewhere(text: str, phrase: str = "hey jarvis") -> bool:
+    """A transcript that opens by calling someone else by name ("Hey Charlie, go along to the
+    front door"): the wake word fired on a near miss of its phrase, and the words show it.
+    Whisper capitalises a name it hears; a mishearing of the wake name itself ("Hey Travis")
+    is close to it and still counts as the phrase."""
+    if _wake_phrase_end(text, phrase) is not None:
+        return False
+    words = re.findall(r"[A-Za-z']+", text)
+    name = phrase.split()[-1].lower()
+    return (len(words) >= 2 and words[0].lower() in _GREETINGS and words[1][:1].isupper()
+            and words[1].lower() not in _NOT_NAMES
+            and difflib.SequenceMatcher(None, words[1].lower(), name).ratio() < 0.6)
+
+
 def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
     """Remove the wake phrase (and anything heard before it) from a transcript; the text
     after it is kept as said."""
