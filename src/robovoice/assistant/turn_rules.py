@@ -9,6 +9,7 @@ from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolReturned
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
+from robovoice.assistant.intent import ClauseKind
 from robovoice.llm.base import ToolCallRequested, ToolSpec
 
 
@@ -34,8 +35,19 @@ def done(outcomes: Sequence[ToolReturned], worded: int = 0) -> int:
 
 
 def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: int = 0) -> bool:
-    """A compound request with things asked that are not done yet."""
+    """A compound request with things asked that are not done yet; or a request whose first
+    call was refused as what the person declined beside it ("Please don't switch the projector
+    on. I only want to talk to Dr. Weber." — told only why, the model left the request undone)."""
+    if len(asked) == 1 and len(outcomes) == 1 and not worded and _reason(outcomes[0]) == ClauseKind.NEGATED.value:
+        return True
     return len(asked) > 1 and done(outcomes, worded) < len(asked)
+
+
+def _reason(outcome: ToolReturned) -> str | None:
+    """Why the check before acting refused this call (None: it was not refused)."""
+    details = outcome.result.get("details") if outcome.error == NOT_REQUESTED and outcome.result is not None else None
+    reason = details.get("reason") if isinstance(details, dict) else None
+    return reason if isinstance(reason, str) else None
 
 
 def offered(specs: Sequence[ToolSpec], lookup: bool, fitting: Collection[str] = ()) -> list[ToolSpec]:
@@ -59,10 +71,8 @@ def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str])
     """What the person hears when the model ended a turn without words: true to what ran."""
     ran = ran_calls(outcomes)
     if not ran:
-        refused = [o.result for o in outcomes if o.error == NOT_REQUESTED and o.result is not None]
-        details = refused[-1].get("details") if refused else None
-        reason = details.get("reason") if isinstance(details, dict) else None
-        after = said_after(reason) if isinstance(reason, str) else None
+        reasons = [r for r in map(_reason, outcomes) if r is not None]
+        after = said_after(reasons[-1]) if reasons else None
         if after is not None:
             return after
         return "Sorry, I'm not sure what you would like me to do. Could you say it another way?"
