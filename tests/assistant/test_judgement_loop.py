@@ -183,3 +183,17 @@ async def test_a_call_to_someone_nobody_named_is_asked_about_not_made_and_the_an
     assert [o.error for o in asked.outcomes] == [NOT_REQUESTED]
     assert asked.reply == "Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
     assert [(c.name, c.arguments) for c in answered.calls] == [("start_video_call", {"contact": "Ben"})]
+
+
+async def test_after_a_declined_call_is_refused_the_request_beside_it_is_done() -> None:
+    """"Please don't switch the projector on. I only want to talk to Dr. Weber.": the model
+    first switches the projector (refused as declined); told then to do what was asked, it
+    makes the call (audio test v4: told only why, it left the request undone)."""
+    script: list[ScriptedReply] = [call("set_projector_power", on=False), call("start_video_call", contact="Dr. Weber")]
+    async with scripted_sim(script) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn(
+            "Please don't switch the projector on. I only want to talk to Dr. Weber.")
+        assert robot.sim is not None and robot.sim.state.call_contact == "Dr. Weber"
+    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+        ("set_projector_power", NOT_REQUESTED), ("start_video_call", None)]
+    assert server.requests[1].last_user_text == "Now do the next thing I asked: I only want to talk to Dr. Weber."

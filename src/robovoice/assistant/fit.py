@@ -140,9 +140,12 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
 
 def listed(parameters: Mapping[str, Any]) -> dict[str, list[str]]:
     """The arguments whose schema lists their values (``enum`` or ``examples``), with the values."""
-    return {name: [str(v) for v in (schema.get("enum") or schema.get("examples"))]
-            for name, schema in (parameters.get("properties") or {}).items()
-            if isinstance(schema, Mapping) and (schema.get("enum") or schema.get("examples"))}
+    found: dict[str, list[str]] = {}
+    for name, schema in (parameters.get("properties") or {}).items():
+        values = (schema.get("enum") or schema.get("examples")) if isinstance(schema, Mapping) else None
+        if isinstance(values, list) and values:
+            found[name] = [str(v) for v in values]
+    return found
 
 
 def _names(said: str, names: Collection[str]) -> bool:

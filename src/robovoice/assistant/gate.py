@@ -72,8 +72,10 @@ def question(refused: Mapping[str, Any]) -> str | None:
     values ("Which one do you mean: Anna, Ben, Clara or Dr. Weber?"), asked instead of another
     model step (which on the embedded model tends to make the same call again); else None."""
     details = refused.get("details")
-    choices = details.get("choices") if isinstance(details, Mapping) else None
-    if not isinstance(choices, list) or not choices or details.get("reason") != UNCLEAR:
+    if not isinstance(details, Mapping) or details.get("reason") != UNCLEAR:
+        return None
+    choices = details.get("choices")
+    if not isinstance(choices, list) or not choices:
         return None
     named = [str(c) for c in choices]
     return "Which one do you mean: " + (", ".join(named[:-1]) + " or " if len(named) > 1 else "") + named[-1] + "?"
