@@ -62,9 +62,9 @@ def phrase_answer(
     read-only tools; `continuing`: the turn goes on with more the person asked."""
     if not step or intent is None:
         return None
-    asked = [question(r.result) for _, r in step if r.error == NOT_REQUESTED and r.result is not None]
-    if not continuing and len(asked) == len(step) and asked[-1] is not None:
-        return asked[-1]  # every call refused for a value nobody named: the robot asks which
+    questions = [question(r.result) for _, r in step if r.error == NOT_REQUESTED and r.result is not None]
+    if not continuing and len(questions) == len(step) and questions[-1] is not None:
+        return questions[-1]  # every call refused, the last for a value nobody named: the robot asks which
     looked_up = all(called.name in read_only for called, _ in step)
     if not (continuing and looked_up) and (not asks_nothing(intent) or any(c.name in read_only for c, _ in step)):
         return None

@@ -43,10 +43,15 @@ def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: i
     return len(asked) > 1 and done(outcomes, worded) < len(asked)
 
 
+def _refusal_details(outcome: ToolReturned) -> dict[str, object]:
+    """The ``details`` of the check before acting's refusal of this call (empty: not refused)."""
+    details = outcome.result.get("details") if outcome.error == NOT_REQUESTED and outcome.result is not None else None
+    return details if isinstance(details, dict) else {}
+
+
 def _reason(outcome: ToolReturned) -> str | None:
     """Why the check before acting refused this call (None: it was not refused)."""
-    details = outcome.result.get("details") if outcome.error == NOT_REQUESTED and outcome.result is not None else None
-    reason = details.get("reason") if isinstance(details, dict) else None
+    reason = _refusal_details(outcome).get("reason")
     return reason if isinstance(reason, str) else None
 
 
@@ -61,9 +66,9 @@ def refused_for_fit(outcomes: Sequence[ToolReturned]) -> list[str]:
     """The tools that fit the request, named by a refusal of a call that did not (`gate.OTHER`)."""
     fits: list[str] = []
     for o in outcomes:
-        details = o.result.get("details") if o.error == NOT_REQUESTED and o.result is not None else None
-        if isinstance(details, dict) and isinstance(details.get("fits"), list):
-            fits += [name for name in details["fits"] if isinstance(name, str)]
+        named = _refusal_details(o).get("fits")
+        if isinstance(named, list):
+            fits += [name for name in named if isinstance(name, str)]
     return fits
 
 

@@ -13,13 +13,13 @@ import re
 from typing import Final
 
 STOP_PHRASES: Final = frozenset({
-    "stop", "halt", "freeze", "stop the robot", "stop robot", "stop moving", "stop driving", "stop it",
+    "stop", "halt", "freeze", "stop moving", "stop driving", "stop it",
     "stop right there", "stop there", "stop now", "stop right now", "emergency stop", "stop stop", "hold it",
     "hold it right there",
 })  # fmt: skip
 # With the robot's own voice over it, Whisper tiny.en garbles the little word of "stop the
 # robot" ("Stop my robot!", "Stop one robot!", "Stop when robot!", "Stop one of the robot!"):
-# "stop", up to three short words, "robot" is still a stop
+# "stop", up to three short words, "robot" is a stop ("stop the robot" and "stop robot" too)
 _STOP_THE_ROBOT: Final = re.compile(r"(?:stop|halt)(?: [a-z]{1,4}){0,3} robot")
 _FILLERS: Final = ("please", "right now", "now", "immediately", "okay", "ok", "hey", "jarvis", "robot",
                    "oh", "hey robot", "you")  # fmt: skip
