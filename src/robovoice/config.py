@@ -34,7 +34,7 @@ from pathlib import Path, PurePath
 from typing import TYPE_CHECKING, Any, Literal
 from urllib.parse import urlsplit
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator, model_validator
 
 from robovoice.address import HttpAddress, LocalAddress, RobotAddress, StdioAddress, parse_robot_address
 from robovoice.errors import ConfigError
@@ -261,6 +261,10 @@ class VoiceConfig(_Frozen):
     # ("Sorry, I didn't catch that."); -0.6 was chosen on the dev audio (docs/judgement.md)
     confidence_check: bool = True
     confidence_min_logprob: float = -0.6
+    # a tool with a confirm question ("Shall I call Anna?") is asked about, not run, on a
+    # command transcript below this (a transcript in doubt); -0.4 was chosen on the dev audio
+    confirm_doubtful: bool = True
+    confirm_below_logprob: float = -0.4
     # speech-to-text: Whisper tiny.en (takes vocabulary hints), Moonshine base-en, or none
     # (only with an audio-capable model)
     stt: Literal["whisper", "moonshine", "none"] = "whisper"
@@ -274,10 +278,14 @@ class VoiceConfig(_Frozen):
                              f"end_of_turn_silence_ms (default 300), or set early_end = false")
         return value
 
-    @field_validator("confidence_min_logprob")
+    @field_validator("confidence_min_logprob", "confirm_below_logprob")
     @classmethod
-    def _min_logprob(cls, value: float) -> float:
+    def _min_logprob(cls, value: float, info: ValidationInfo) -> float:
         if not -10.0 <= value < 0.0:  # a mean log-probability is <= 0; below -10 nothing is ever turned away
+            if info.field_name == "confirm_below_logprob":
+                raise ValueError(f"confirm_below_logprob = {value}: give a mean token log-probability from -10 "
+                                 f"up to (not including) 0 (default -0.4; lower asks less often), or set "
+                                 f"confirm_doubtful = false")
             raise ValueError(f"confidence_min_logprob = {value}: give a mean token log-probability from -10 "
                              f"up to (not including) 0 (default -0.6; lower turns fewer transcripts away), "
                              f"or set confidence_check = false")

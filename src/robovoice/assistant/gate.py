@@ -37,6 +37,8 @@ UNCLEAR = "unclear"  # a reference the conversation does not resolve: "go there"
 
 OTHER = "other_tool"  # a request stands, but not for this tool: "plug yourself in" and the projector
 
+CONFIRM = "confirm"  # held until the person says yes: the words may be misheard (assistant/confirm.py)
+
 _HINTS = {
     ClauseKind.NEGATED.value: "The user asked you not to do this now. Do not do it. Acknowledge in one short "
                               "sentence.",
@@ -50,6 +52,7 @@ _HINTS = {
     UNCLEAR: "The user did not say which one they mean. Do not guess: ask them in one short question.",
     OTHER: "The user did not ask for this tool. Do only what they asked; if you are not sure what that is, "
            "ask them in one short question.",
+    CONFIRM: "The user's words may have been misheard. Do not do it yet: ask them whether they want it.",
 }
 
 
@@ -70,8 +73,11 @@ _AFTER = {
 def question(refused: Mapping[str, Any]) -> str | None:
     """The robot's own question after a call refused as `UNCLEAR` whose argument lists its
     values ("Which one do you mean: Anna, Ben, Clara or Dr. Weber?"), asked instead of another
-    model step (which on the embedded model tends to make the same call again); else None."""
+    model step (which on the embedded model tends to make the same call again), or after a call
+    held for `CONFIRM` ("Shall I call Anna?"); else None."""
     details = refused.get("details")
+    if isinstance(details, Mapping) and details.get("reason") == CONFIRM and isinstance(details.get("question"), str):
+        return str(details["question"])
     if not isinstance(details, Mapping) or details.get("reason") != UNCLEAR:
         return None
     choices = details.get("choices")
@@ -79,6 +85,14 @@ def question(refused: Mapping[str, Any]) -> str | None:
         return None
     named = [str(c) for c in choices]
     return "Which one do you mean: " + (", ".join(named[:-1]) + " or " if len(named) > 1 else "") + named[-1] + "?"
+
+
+def held(name: str, question_: str) -> dict[str, Any]:
+    """The ``{error, message, hint, details}`` body of a call held until the person confirms it:
+    it did not reach the robot (scored as refused), and `question` reads the question from it."""
+    log.info("held %s until the user confirms: %r", name, question_)
+    return {"error": NOT_REQUESTED, "message": f"not done yet: {name} waits for the user's yes",
+            "hint": _HINTS[CONFIRM], "details": {"tool": name, "reason": CONFIRM, "question": question_}}
 
 
 def said_after(reason: str) -> str | None:

@@ -1,24 +1,24 @@
 """The conversation loop: model → tool calls → results back → model, one turn at a time.
 
 Text the model streams is split into sentences as it arrives and each complete sentence is
-handed on at once (`SentenceReady`), so speech can start while the model still generates.
+handed on at once (`model_step`), so speech can start while the model still generates.
+A call held for the person's yes (`confirm`) is answered in the next turn without a model step.
 Robot-side tool errors go back to the model as tool results so it can recover (ask the user,
 list the places). When no backend answers, the turn ends with the spoken fallback message.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import logging
-import time
-from collections.abc import Awaitable, Callable, Collection, Mapping, Sequence
+from collections.abc import Awaitable, Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from robovoice.assistant import turn_rules
+from robovoice.assistant.confirm import DECLINED, Confirmations, Held, question
 from robovoice.assistant.events import (
     BackendFailed,
-    FirstTokenReceived,
-    SentenceReady,
     ToolCalled,
     ToolProgressed,
     ToolReturned,
@@ -27,27 +27,30 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import halts, refusal
+from robovoice.assistant.gate import halts, held, refusal
 from robovoice.assistant.intent import Intent, read_request
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
+from robovoice.assistant.model_step import model_step, say
 from robovoice.assistant.motion_probe import PoseMotionProbe
-from robovoice.assistant.phrase import found_phrase, phrase_answer
+from robovoice.assistant.phrase import found_phrase, phrase_answer, result_phrase
 from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import (
     MODEL_ONLY,
-    ModelOnlyText,
     TurnActions,
-    figures_in,
-    in_first_person,
-    invented_figure_in,
-    speakable,
 )
-from robovoice.assistant.turn_rules import asked_left, call_key, done, is_repeat, offered, wordless_reply
-from robovoice.audio.sentences import SentenceSplitter
+from robovoice.assistant.turn_rules import (
+    asked_left,
+    bounded_history,
+    call_key,
+    done,
+    is_repeat,
+    offered,
+    wordless_reply,
+)
 from robovoice.errors import LLMError
-from robovoice.llm.base import ChatMessage, ContentPart, Finished, LLMBackend, TextDelta, ToolCallRequested, ToolSpec
+from robovoice.llm.base import ChatMessage, ContentPart, LLMBackend, ToolCallRequested, ToolSpec
 from robovoice.llm.failover import FALLBACK_MESSAGE
 from robovoice.manifest.voice import VoiceDecl, tools_with_role
 
@@ -90,10 +93,12 @@ class Assistant:
         self.fallback_message = fallback_message
         self._observer = observer
         self._history: list[ChatMessage] = []
+        self.confirmations = Confirmations()  # a call held until the person says yes (assistant/confirm.py)
 
     def reset(self) -> None:
         """Forget the conversation (a fresh one per evaluation case)."""
         self._history.clear()
+        self.confirmations.clear()
 
     @property
     def history(self) -> Sequence[ChatMessage]:
@@ -115,12 +120,18 @@ class Assistant:
         *,
         metrics: TurnMetrics | None = None,
         observer: Observer | None = None,
+        doubtful: bool = False,
     ) -> TurnResult:
         """Run one user turn to its spoken reply. `observer` gets this turn's events (after
-        the conversation's observer): a voice turn routes its sentences to speech with it."""
+        the conversation's observer): a voice turn routes its sentences to speech with it.
+        `doubtful`: the words may be misheard (a transcript in doubt): a tool that declares a
+        confirm question is asked about instead of run (assistant/confirm.py)."""
         metrics = metrics or TurnMetrics()
         emit = self._emitter(observer)
         await emit(TurnStarted(ChatMessage("user", user).text))
+        answered = self.confirmations.take(user if isinstance(user, str) else "")
+        if answered is not None:  # "Yes, please." to "Shall I call Anna?": no model step
+            return await self._answer_held(ChatMessage("user", user).text, *answered, metrics, emit)
         messages, intent = self._opening(user)
         asked = intent.steps if intent is not None else ()
         lookups = intent.lookups if intent is not None else ()
@@ -155,7 +166,7 @@ class Assistant:
             specs = offered(specs, lookup or lookup_only, fitting)
             lookup_only, fitting = False, []
             try:
-                text, requested, guessed = await self._model_step(messages, specs, metrics, emit, model_only,
+                text, requested, guessed = await model_step(self.backend, messages, specs, metrics, emit, model_only,
                                                                   TurnActions(calls, outcomes, read_only))
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
@@ -200,7 +211,7 @@ class Assistant:
             ran: list[tuple[ToolCalled, ToolReturned]] = []
             for request in requested:
                 spec = by_name.get(request.name)
-                called, returned = await self._run_tool(request, metrics, emit, intent, spec, said)
+                called, returned = await self._run_tool(request, metrics, emit, intent, spec, said, doubtful)
                 ran.append((called, returned))
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
                 if spec is not None and spec.read_only:
@@ -232,6 +243,11 @@ class Assistant:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next
                 messages.append(next_step())
+        held_now = self.confirmations.held  # a call held this turn: its question is the last thing said
+        if held_now is not None and not any(held_now.question in r for r in replies):
+            await self._say(held_now.question, metrics, emit)
+            replies.append(held_now.question)
+            messages.append(ChatMessage("assistant", held_now.question))
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             words_ = found_phrase(self.tools.voice(), calls, outcomes, read_only) or wordless_reply(outcomes, read_only)
             log.info("the model ended the turn without words; said %r", words_)
@@ -244,6 +260,29 @@ class Assistant:
         metrics.mark("finished")
         await emit(TurnFinished(reply, tuple(calls), steps))
         return TurnResult(reply, tuple(calls), tuple(outcomes), metrics, fell_back)
+
+    async def _answer_held(self, user: str, call: Held, yes: bool, metrics: TurnMetrics, emit: _Emit) -> TurnResult:
+        """The person's yes or no to a held call: it runs (unchecked: they confirmed it) with its
+        phrase as the answer, or it is dropped. No model step either way."""
+        messages = [ChatMessage("user", user)]
+        calls: tuple[ToolCalled, ...] = ()
+        outcomes: tuple[ToolReturned, ...] = ()
+        reply = DECLINED
+        if yes:
+            specs = {s.name: s for s in await self.tools.specs()}
+            request = dataclasses.replace(call.request, id=f"{call.request.id}_confirmed")
+            called, returned = await self._run_tool(request, metrics, emit, None, specs.get(request.name), set())
+            calls, outcomes = (called,), (returned,)
+            reply = result_phrase(self.tools.voice().get(request.name), called, returned) or wordless_reply(
+                outcomes, {n for n, s in specs.items() if s.read_only})
+            messages += [ChatMessage("assistant", "", (request.to_history(),)),
+                         ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name)]
+        await self._say(reply, metrics, emit)
+        self._history = bounded_history([*self._history, *messages, ChatMessage("assistant", reply)],
+                                        self.max_history_messages)
+        metrics.mark("finished")
+        await emit(TurnFinished(reply, calls, 0))
+        return TurnResult(reply, calls, outcomes, metrics)
 
     async def first_request(self, text: str) -> tuple[list[ChatMessage], list[ToolSpec]]:
         """The messages and tools the first model step of a turn for `text` would send (the
@@ -263,84 +302,13 @@ class Assistant:
             messages.append(ChatMessage("user", step_hint(intent.steps[0], intent.lookups[0], first=True)))
         return messages, intent
 
-    async def _model_step(
-        self, messages: list[ChatMessage], specs: list[ToolSpec], metrics: TurnMetrics, emit: _Emit,
-        model_only: ModelOnlyText, actions: TurnActions,
-    ) -> tuple[str, list[ToolCallRequested], bool]:
-        """One model step, its sentences said as they come: what it said, the calls it asked for, and
-        whether a sentence was held back for a figure nobody gave it. `actions`: what the turn's
-        calls did so far, so a sentence claiming an action they did not do is not said."""
-        splitter = SentenceSplitter()
-        known = figures_in(m.text for m in messages)  # what a figure the model says may come from
-        text: list[str] = []
-        requested: list[ToolCallRequested] = []
-        guessed = False
-        started = time.perf_counter()
-        first = True
-        waited = 0.0  # time spent waiting on the model, excluding our own handling of its output
-        mark = started
-        async for event in self.backend.stream(messages, specs):
-            now = time.perf_counter()
-            waited += now - mark
-            if first:
-                first = False
-                metrics.mark("first_token")
-                await emit(FirstTokenReceived(self.backend.name))
-            match event:
-                case TextDelta(delta):
-                    for sentence in splitter.feed(delta):
-                        guessed |= await self._say_speakable(sentence, text, metrics, emit, model_only, known,
-                                                             actions)
-                case ToolCallRequested():
-                    requested.append(event)
-                case Finished():
-                    pass
-            mark = time.perf_counter()
-        metrics.model_ms += waited * 1000.0
-        rest = splitter.flush()
-        if rest:
-            guessed |= await self._say_speakable(rest, text, metrics, emit, model_only, known, actions)
-        for i, request in enumerate(requested):
-            if not request.id:  # some servers omit ids; the history needs them to pair results
-                requested[i] = ToolCallRequested(f"call_{len(messages)}_{i}", request.name, request.arguments,
-                                                 request.raw_arguments, request.arguments_error)
-        return " ".join(text).strip(), requested, guessed
-
-    async def _say_speakable(
-        self, sentence: str, said: list[str], metrics: TurnMetrics, emit: _Emit, model_only: ModelOnlyText,
-        known: Collection[float], actions: TurnActions,
-    ) -> bool:
-        """Say a sentence of the model's (in the first person) and keep it in `said`, unless it reads out words meant
-        for the model only or tool-call syntax (`speech_guard`), gives a measured figure found
-        nowhere in the conversation (`known`), or claims an action the turn did not do
-        (`actions`): then it is neither said nor kept, and a turn left with nothing
-        said ends with its look-ups' phrases (`found_phrase`) or `wordless_reply`, not in silence.
-        True when it was held back for such a figure."""
-        spoken = speakable(sentence, model_only)
-        if spoken is None:
-            log.warning("not saying %r: tool-call syntax or the model's instructions", sentence)
-            return False
-        spoken = in_first_person(spoken)
-        figure = invented_figure_in(spoken, known)
-        if figure is not None:
-            log.warning("not saying %r: %r is a figure nobody gave the model", sentence, figure)
-            return True
-        claim = actions.false_claim(spoken)
-        if claim is not None:
-            log.warning("not saying %r: it claims an action (%r) this turn did not do", sentence, claim)
-            return False
-        said.append(spoken.strip())
-        await self._say(spoken, metrics, emit)
-        return False
-
     @staticmethod
     async def _say(sentence: str, metrics: TurnMetrics, emit: _Emit) -> None:
-        metrics.mark("first_sentence")
-        await emit(SentenceReady(sentence))
+        await say(sentence, metrics, emit)
 
     async def _run_tool(
         self, request: ToolCallRequested, metrics: TurnMetrics, emit: _Emit, intent: Intent | None,
-        spec: ToolSpec | None, said: set[str],
+        spec: ToolSpec | None, said: set[str], doubtful: bool = False,
     ) -> tuple[ToolCalled, ToolReturned]:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
@@ -354,6 +322,9 @@ class Assistant:
             # runs unless the robot is known to stand still, where it would do nothing the person
             # asked for ("Wait, don't call anyone." answered "I am standing still.")
             refused = refused if await self._standing_still(voice) else None
+        if refused is None and doubtful and (asked := question(voice, request.name, request.arguments)):
+            refused = held(request.name, asked)  # it never reaches the robot unless the person says yes
+            self.confirmations.hold(request, asked)
         if refused is not None:  # the user did not ask for this: it never reaches the robot
             outcome = ToolOutcome(json.dumps(refused), True, 0.0, refused)
         elif request.arguments_error is not None:
@@ -379,16 +350,5 @@ class Assistant:
         return bool(poses) and await PoseMotionProbe(self.tools, poses[0])() is False
 
     def _remember(self, turn_messages: list[ChatMessage]) -> None:
-        """Keep a bounded history that starts at a user message (tool results stay paired).
-
-        When it outgrows `max_history_messages` it is cut to about half, not by one turn: a
-        model server (or the embedded model) that reuses the evaluated prompt prefix then only
-        re-evaluates the conversation once every few turns, instead of on every turn once the
-        window is full (measured in the demo: the first token of a late turn went from 6 s to
-        the usual 1.5-2 s)."""
-        history = [m if m.role != "user" else ChatMessage("user", m.text) for m in turn_messages]  # drop audio
-        if len(history) > self.max_history_messages:
-            history = history[-max(1, self.max_history_messages // 2):]
-        while history and history[0].role != "user":
-            history.pop(0)
-        self._history = history
+        """Keep a bounded history that starts at a user message (`turn_rules.bounded_history`)."""
+        self._history = bounded_history(turn_messages, self.max_history_messages)

@@ -16,7 +16,8 @@ with ``{on:on|off}`` (true: the text before ``|``, false: the text after). They 
 the call's arguments (`start`); its progress report's ``message``, ``progress``, ``total`` and
 ``percent`` (`progress`); the arguments and the top-level fields of the structured result
 (`success`), or of the error body ``error``, ``message``, ``hint`` (`failure`): see
-`result_fields`. A field that is missing (or a value its format spec does not fit) gives no
+`result_fields`; `confirm` (the question asked before a call on words that may have been
+misheard) from the arguments. A field that is missing (or a value its format spec does not fit) gives no
 phrase at all: `fill` returns None, it never raises. The same section reaches MCP clients in
 the tool's ``_meta`` under `META_KEY`, so a remote assistant reads it from ``tools/list``.
 """
@@ -111,8 +112,12 @@ class VoicePhrases(_Strict):
                                 "and the structured result's top-level fields)")
     failure: str | None = Field(default=None, description="said when the tool fails (fields: the arguments, "
                                 "error, message, hint)")
+    confirm: str | None = Field(default=None, description="asked before the tool runs when the words it was "
+                                "called on may have been misheard, e.g. \"Shall I call {contact}?\" (fields: the "
+                                "arguments); it runs on a yes (docs/judgement.md). For tools whose unwanted call "
+                                "cannot be taken back")
 
-    @field_validator("start", "progress", "success", "failure")
+    @field_validator("start", "progress", "success", "failure", "confirm")
     @classmethod
     def _template(cls, value: str | None) -> str | None:
         if value is not None:

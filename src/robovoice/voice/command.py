@@ -24,7 +24,7 @@ from robovoice.audio.format import AudioChunk
 from robovoice.audio.stt import Transcript
 from robovoice.llm.base import AudioPart, ContentPart
 from robovoice.voice.answers import AnswerRecorder
-from robovoice.voice.confidence import DIDNT_CATCH, unsure_reason
+from robovoice.voice.confidence import DIDNT_CATCH, doubtful, unsure_reason
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import Emit, TranscriptReady, VoiceTurnFinished, VoiceTurnStarted
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
@@ -157,6 +157,7 @@ class CommandTurn:
             audio = trim_to_wake(utt.audio, verdict.wake_at)
             content: str | tuple[ContentPart, ...]
             text = ""
+            in_doubt = False  # a call that cannot be taken back is asked about first (assistant/confirm.py)
             if c.audio_native and (c.stt is None or utt.duration_s > c.config.turns.stop_max_s):
                 if verdict.wake_at is not None and utt.end - verdict.wake_at < WAKE_ONLY_S:
                     c.turns.rearm(utt.end)
@@ -177,6 +178,7 @@ class CommandTurn:
                     await report_ignored(c.emit, c.stats, "addressed_elsewhere", utt, raw)
                     return
                 if is_stop_command(text):
+                    c.assistant.confirmations.clear()  # a "stop" is no yes to "Shall I call Anna?"
                     await c.stopper.stop(text, utt.end, self.id, metrics)
                     return
                 if unsure is not None:
@@ -185,6 +187,7 @@ class CommandTurn:
                     await report_ignored(c.emit, c.stats, unsure, utt, raw)
                     return
                 content = (AudioPart(wav_bytes(audio)),) if c.audio_native else text
+                in_doubt = doubtful(heard, c.config.confidence)
             mode: Literal["text", "audio"] = "audio" if isinstance(content, tuple) else "text"
             c.stats.turns += 1
             started = True
@@ -192,7 +195,7 @@ class CommandTurn:
             await c.emit(VoiceTurnStarted(self.id, mode, text, audio.duration_s, verdict.follow_up))
             filler = asyncio.create_task(self._one_moment(), name=f"one-moment-{self.id}")
             try:
-                result = await c.assistant.turn(content, metrics=metrics, observer=self.on_event)
+                result = await c.assistant.turn(content, metrics=metrics, observer=self.on_event, doubtful=in_doubt)
             finally:
                 filler.cancel()
             c.answers.add(result)

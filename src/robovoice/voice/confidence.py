@@ -15,6 +15,10 @@ clear commands ("Call Anna." scored 0.06). The threshold is ``[voice] confidence
 (-0.6: between the dev set's least sure clear command, -0.54, and its surest command buried
 in noise, -0.69); ``confidence_check = false`` turns the check off. A transcript without
 scores (Moonshine) is never turned away.
+
+Between that threshold and ``[voice] confirm_below_logprob`` (-0.4) a transcript is in doubt
+(`doubtful`): acted on, but a tool that declares a confirm question ("Shall I call Anna?") is
+asked about first (assistant/confirm.py).
 """
 
 from __future__ import annotations
@@ -58,3 +62,11 @@ def unsure_reason(transcript: Transcript, text: str, check: ConfidenceCheck) -> 
     if check.min_avg_logprob is not None and scores.avg_logprob < check.min_avg_logprob:
         return f"unsure: mean log-probability {scores.avg_logprob:.2f} < {check.min_avg_logprob:.2f}"
     return None
+
+
+def doubtful(transcript: Transcript, check: ConfidenceCheck) -> bool:
+    """Sure enough to act on, but not to run a call that cannot be taken back unasked: the
+    assistant asks "Shall I call Anna?" first (`assistant.confirm`). A transcript without
+    scores (Moonshine) is never in doubt."""
+    scores = transcript.confidence
+    return check.confirm_below is not None and scores is not None and scores.avg_logprob < check.confirm_below

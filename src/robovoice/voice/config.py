@@ -109,13 +109,16 @@ class SpeculationConfig:
 @dataclass(frozen=True, slots=True)
 class ConfidenceCheck:
     """`min_avg_logprob`: a command transcript whose mean token log-probability is below it
-    is turned away (`voice.confidence`); None turns the check off."""
+    is turned away (`voice.confidence`); `confirm_below`: below it, a tool with a confirm
+    question is asked about before it runs (`assistant.confirm`). None turns either off."""
 
     min_avg_logprob: float | None
+    confirm_below: float | None = None
 
     @classmethod
     def from_config(cls, voice: VoiceConfig) -> ConfidenceCheck:
-        return cls(voice.confidence_min_logprob if voice.confidence_check else None)
+        return cls(voice.confidence_min_logprob if voice.confidence_check else None,
+                   voice.confirm_below_logprob if voice.confirm_doubtful else None)
 
 
 @dataclass(frozen=True, slots=True)
