@@ -110,6 +110,8 @@ def test_the_gate_refuses_a_tool_nobody_asked_for_and_names_what_fits() -> None:
     ("Take me over to the, um, that room.", "navigate_to", {"target": "living room"}, ["living room"]),  # 3 rooms
     ("Go to the living room.", "navigate_to", {"target": "living room"}, []),
     ("Go to the door.", "navigate_to", {"target": "front door"}, []),  # the only door
+    ("Go through to the front room.", "navigate_to", {"target": "front room"}, []),  # its own name, not listed
+    ("Go to the room.", "navigate_to", {"target": "front room"}, ["front room"]),  # not all of it was said
 ])
 def test_a_listed_argument_must_be_named_by_somebody(
         text: str, tool: str, arguments: dict[str, object], missing: list[str]) -> None:

@@ -172,9 +172,29 @@ def test_courtesy_around_a_request_and_an_only_after_step() -> None:
     ("Go to the bedroom and when you get there, turn the projector off.",
      ("Go to the bedroom", "turn the projector off")),  # on arrival: the order, not a condition
     ("Call Anna and go to the kitchen, oh, scrap the kitchen.", ("Call Anna",)),
+    ("Head to the door, and when you get there give Ben a ring.", ("Head to the door", "give Ben a ring")),
+    ("Go to the kitchen, and once you're in there call Anna.", ("Go to the kitchen", "call Anna")),
+    ("Would you pop into the kitchen, no, hang on, not the kitchen, the hallway. The hallway, sorry.",
+     ("the hallway",)),  # corrected, and said again: one step
+    ("Ring Anna and then go to the kitchen. Actually skip the kitchen, just Anna.", ("Ring Anna",)),
+    ("Stop, stop! Go to the bathroom instead.", ("Stop", "Go to the bathroom instead")),
 ])
 def test_more_everyday_ways_of_asking_and_correcting(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize("text", [
+    "Later on, after lunch, you can go back to your charger.",
+    "Tomorrow morning, ring Ben.",
+    "In a bit, go to the kitchen.",
+])
+def test_a_clause_that_only_says_when_postpones_what_follows(text: str) -> None:
+    assert read_request(text).refusal is ClauseKind.NEGATED
+
+
+def test_a_time_said_with_more_does_not_postpone_the_next_request() -> None:
+    assert read_request("Later is fine for the projector, but go to the kitchen now.").steps == (
+        "go to the kitchen now",)
 
 
 def test_the_doctor_said_before_is_who_him_is() -> None:

@@ -54,6 +54,9 @@ def test_clock_rejects_a_bad_speed() -> None:
         ("Front Door", "front door"),
         ("hall", "hallway"),
         ("BATHROOM", "bathroom"),
+        ("the front room", "living room"),  # everyday British names
+        ("the loo", "bathroom"),
+        ("toilet", "bathroom"),
         ("balcony", "balcony"),
     ],
 )

@@ -124,7 +124,8 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
     conversation's words and this utterance's): "get car on a video call" became Anna, "ring my
     sun" Dr. Weber, a garbled "Go man." the kitchen. A stem that begins another counts ("bed"
     names the bedroom), unless it is part of another listed value too ("that room" names none
-    of the living room, the bedroom, the bathroom); free text (a message) is not checked."""
+    of the living room, the bedroom, the bathroom); a value that is not listed counts as named when
+all its words were said ("the front room"); free text (a message) is not checked."""
     said = {stem(w) for w in usual(heard)}
     choices = listed(parameters)
     missing = []
@@ -132,6 +133,8 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
         if name not in choices or not isinstance(value, str) or not value.strip():
             continue
         names = _names_for(value, description)
+        if value.lower() not in {v.lower() for v in choices[name]} and names and names <= said:
+            continue  # the person's own name for it ("the front room"): the robot resolves it or says it cannot
         others = [n for v in choices[name] if v.lower() != value.lower() for n in _names_for(v, description)]
         if names and not any(_names(s, names) and not any(s in n for n in others) for s in said):
             missing.append(value)

@@ -67,6 +67,7 @@ _AFTER = {
     ClauseKind.UNFINISHED.value: "Sorry, I didn't catch all of that. Could you say it again?",
     UNCLEAR: "Which one do you mean?",
     OTHER: "Sorry, I'm not sure what you'd like me to do. Could you say it another way?",
+    CONFIRM: "I'm not sure I heard you right. Shall I go ahead?",  # the tool's own question is said first
 }
 
 

@@ -54,7 +54,8 @@ COURTESY = re.compile(
     r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
     re.IGNORECASE)
 # … and this is the order of steps, not a condition ("go to the door and when you get there, …").
-ON_ARRIVAL = re.compile(r"^when you(?:'re| are)? (?:get |arrive|there|in there|back)", re.IGNORECASE)
+ON_ARRIVAL = re.compile(r"^(?:when|once) you(?:'re| are)? (?:(?:get|arrive)\w*(?: (?:there|in there|back|in|home))?"
+                        r"|there|in there|back)\b[\s,]*", re.IGNORECASE)
 # … these say what to do first ("once you've checked your battery, come here").
 SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", re.IGNORECASE)
 

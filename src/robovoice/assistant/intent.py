@@ -43,9 +43,13 @@ from robovoice.assistant.lexicon import (
     FILLER,
     IMPERATIVES,
     LATER,
+    LATER_ONLY,
     NOT_NAMES,
+    NOT_THAT,
+    OWN_PLAN,
     QUESTION_WORDS,
     TAG,
+    WITHDRAWAL,
     base_form,
     words,
 )
@@ -268,6 +272,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     condition = corrected = False  # after "if Ben rings, …" / after "…, no, …"
     undone: list[int] = []  # the requests a bare "no" just took back: a "not Ben" after it says which
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
+    when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     for part in split_clauses(text):
         if TAG.match(part.strip()):
             continue  # "…, would you?", "…, dear": part of the clause before it
@@ -292,9 +297,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
             kind, part = ClauseKind.REQUEST, base_form(sequence.group(1)) + bare[sequence.end():]
             front = _first_asked(clauses)
-        elif ON_ARRIVAL.match(bare):
-            clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs
-            continue
+        elif arrival := ON_ARRIVAL.match(bare):
+            rest = bare[arrival.end():]
+            if not rest or classify(rest) is not ClauseKind.REQUEST:
+                clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs
+                continue
+            kind, part = ClauseKind.REQUEST, rest  # "…, and when you get there give Ben a ring": the next step
         elif CONDITION.match(bare):
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
             condition = condition or not COURTESY.match(bare)
@@ -313,16 +321,22 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
+        if kind is ClauseKind.REQUEST and any(c.kind is kind and words(c.text) == words(part) for c in clauses):
+            kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
+        if kind is ClauseKind.REQUEST and when_only:
+            kind = ClauseKind.NEGATED  # "Later on, after lunch, you can go back to your charger"
+        when_only = bool(LATER_ONLY.match(bare)) or (when_only and not bare)
         if kind is ClauseKind.REQUEST and _reason(bare, clauses):
             kind = ClauseKind.STATEMENT  # "ring Clara, I want to show her my cake": why, not what
         corrected = corrected and not bare
         if (named := _named_back(bare, clauses, undone)) is not None:
-            # "…, no, not Ben", "actually, skip the kitchen": only the request that names it is withdrawn
-            kind, corrected = ClauseKind.NEGATED, False
+            # "…, no, not Ben", "actually, skip the kitchen": only the request that names it is withdrawn;
+            # with none left, a place or a person said next is the one meant ("no, not the kitchen, the hallway")
             clauses = [Clause(c.text, ClauseKind.NEGATED if i in named else
                               ClauseKind.REQUEST if i in undone else c.kind) for i, c in enumerate(clauses)]
-        undone = []
-        if kind is ClauseKind.NEGATED and _WITHDRAWAL.match(bare):
+            kind, corrected = ClauseKind.NEGATED, not any(c.kind is ClauseKind.REQUEST for c in clauses)
+        undone = undone if not bare else []  # "no, hang on, not the kitchen": the "no" still holds
+        if kind is ClauseKind.NEGATED and WITHDRAWAL.match(bare):
             # "switch the projector on… actually, no, don't": the requests said before are withdrawn
             undone = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST]
             corrected = bool(undone)
@@ -340,12 +354,6 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     return Intent(tuple(clauses), answering)
 
 
-# A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
-_WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
-                         r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
-                         r"leave (?:it|that))"
-                         r"\b[\s,]*)+$",
-                         re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
 _THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."
@@ -354,13 +362,6 @@ _NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
-# "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
-# unless it asks the robot for a call or to find something out ("…, I'd like to talk to Anna")
-_OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:(?:really|only|just) )?(?:want|need|wish|like|have|got) to (\w+)",
-                       re.IGNORECASE)
-# Taking back one thing by its name: "not Ben", "skip the kitchen", "leave Clara", "forget about the call".
-_NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|cancel)\s+((?:\w+\s*){1,3})$",
-                       re.IGNORECASE)
 
 
 def _first_asked(clauses: list[Clause]) -> int | None:
@@ -368,7 +369,7 @@ def _first_asked(clauses: list[Clause]) -> int | None:
 
 
 def _reason(bare: str, clauses: list[Clause]) -> bool:
-    plan = _OWN_PLAN.match(bare)
+    plan = OWN_PLAN.match(bare)
     return (plan is not None and plan.group(1).lower() not in ASKING_VERBS
             and any(c.kind is ClauseKind.REQUEST for c in clauses))
 
@@ -376,7 +377,7 @@ def _reason(bare: str, clauses: list[Clause]) -> bool:
 def _named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int] | None:
     """The requests said before that a "not Ben" or "skip the kitchen" names (None when it names
     none of them, or is no such clause): just those are taken back."""
-    match = _NOT_THAT.match(bare)
+    match = NOT_THAT.match(bare)
     if match is None:
         return None
     named = set(words(match.group(1))) - NOT_NAMES

@@ -78,3 +78,23 @@ def base_form(participle: str) -> str:
     if word.endswith(("ved", "ged", "ced", "zed", "ated")) or (word.endswith("sed") and not word.endswith("ssed")):
         return word[:-1]  # "charged" → "charge", "closed" → "close"
     return word.removesuffix("ed")
+
+
+# A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
+WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
+                        r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
+                        r"leave (?:it|that))"
+                        r"\b[\s,]*)+$",
+                        re.IGNORECASE)
+# "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
+# unless it asks the robot for a call or to find something out ("…, I'd like to talk to Anna")
+OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:(?:really|only|just) )?(?:want|need|wish|like|have|got) to (\w+)",
+                      re.IGNORECASE)
+# Taking back one thing by its name: "not Ben", "skip the kitchen", "leave Clara", "forget about the call".
+NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|cancel)\s+((?:\w+\s*){1,3})$",
+                      re.IGNORECASE)
+# A clause that only says when, not what: "Later on, after lunch, you can go back to your
+# charger": what follows in the same breath is postponed too.
+LATER_ONLY = re.compile(r"^(?:(?:later(?: on)?|tomorrow(?: morning| afternoon| evening)?|tonight|this (?:evening|"
+                        r"afternoon)|after (?:lunch|dinner|breakfast|tea)|in an? (?:bit|while|hour|minute|moment)|"
+                        r"some other time|another time)\b[\s,]*)+$", re.IGNORECASE)
