@@ -197,3 +197,20 @@ async def test_after_a_declined_call_is_refused_the_request_beside_it_is_done() 
     assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
         ("set_projector_power", NOT_REQUESTED), ("start_video_call", None)]
     assert server.requests[1].last_user_text == "Now do the next thing I asked: I only want to talk to Dr. Weber."
+
+
+async def test_a_refused_call_made_again_is_not_run_and_the_next_thing_asked_is_done() -> None:
+    # a garbled first step (Whisper's "Join the project to look" for "turn the projector off"):
+    # the model keeps driving to the kitchen, which nobody named; the dock after it is still done
+    script: list[ScriptedReply] = [call("navigate_to", target="kitchen"), call("navigate_to", target="kitchen"),
+                                   call("return_to_dock"), TextReply("unused")]
+    async with scripted_sim(script) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn(
+            "Join the project to look and then get yourself back on your charger.")
+        assert robot.sim is not None
+        assert robot.sim.state.nearest_place == "charging dock"
+    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+        ("navigate_to", NOT_REQUESTED), ("return_to_dock", None)]  # the repeat was not run
+    assert len(server.requests) == 3
+    hint = server.requests[2].messages[-1]
+    assert hint["role"] == "user" and "get yourself back on your charger" in hint["content"]

@@ -27,7 +27,7 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import halts, held, refusal
+from robovoice.assistant.gate import NOT_REQUESTED, halts, held, refusal
 from robovoice.assistant.intent import Intent, read_request
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
@@ -135,7 +135,9 @@ class Assistant:
         messages, intent = self._opening(user)
         asked = intent.steps if intent is not None else ()
         lookups = intent.lookups if intent is not None else ()
-        worded = 0  # look-ups of a compound request the model answered in words, without a call
+        # things asked the turn moved past without a call that ran: a look-up of a compound request
+        # the model answered in words, a step whose refused call the model made again
+        passed = 0
         # what a "there" or a "her" can refer to: what the person and the robot said before
         said = {w for m in self._history if m.role in ("user", "assistant") for w in words(m.text)}
         max_steps = max(self.max_steps, len(asked) + 2)
@@ -145,6 +147,7 @@ class Assistant:
         fell_back = False
         steps = 0
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
+        refused: set[str] = set()  # calls (name and arguments) the check before acting refused this turn
         answer_now = False
         model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
         for tool in (tools := await self.tools.specs()):  # and their descriptions (a small model reads them back)
@@ -154,7 +157,7 @@ class Assistant:
         fitting: list[str] = []  # after a call that did not fit the request: the tools that do
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
-            due = done(outcomes, worded)
+            due = done(outcomes, passed)
             return ChatMessage("user", step_hint(asked[due], lookups[due], first=False))
 
         for step in range(max_steps):
@@ -162,7 +165,7 @@ class Assistant:
             # On the last step the model gets no tools, so the turn ends with words, not a call.
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
-            lookup = asked_left(asked, outcomes, worded) and lookups[done(outcomes, worded)]
+            lookup = asked_left(asked, outcomes, passed) and lookups[done(outcomes, passed)]
             specs = offered(specs, lookup or lookup_only, fitting)
             lookup_only, fitting = False, []
             try:
@@ -189,7 +192,18 @@ class Assistant:
                 log.info("the model repeated %s; not run", [r.name for r in requested])
                 requested = []
                 if not text:
-                    answer_now = not asked_left(asked, outcomes, worded)
+                    answer_now = not asked_left(asked, outcomes, passed)
+                    continue
+            if requested and all(call_key(r) in refused for r in requested):
+                # a call refused already, made again: not run, and its step is passed over, so a
+                # garbled step ("join the project to look") does not keep the next ones from being done
+                log.info("the model made the refused %s again; not run", [r.name for r in requested])
+                requested, passed = [], passed + 1
+                if not text:
+                    if asked_left(asked, outcomes, passed):
+                        messages.append(next_step())
+                    else:
+                        answer_now = True
                     continue
             if text:
                 replies.append(text)
@@ -202,8 +216,8 @@ class Assistant:
             messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
             if not requested and lookup and text and step < max_steps - 2:
                 # the look-up answered in words: the next thing asked is still to do
-                worded += 1
-                if asked_left(asked, outcomes, worded):
+                passed += 1
+                if asked_left(asked, outcomes, passed):
                     messages.append(next_step())
                     continue
             if not requested:
@@ -218,6 +232,8 @@ class Assistant:
                     looked_up.add(call_key(request))
                 else:
                     looked_up.clear()  # an action may change what a look-up returns
+            refused.update(call_key(r) for r, (_, out) in zip(requested, ran, strict=True)
+                           if out.error == NOT_REQUESTED)
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
             fitting = turn_rules.refused_for_fit([r for _, r in ran])
@@ -225,7 +241,7 @@ class Assistant:
                 hint = r.result.get("hint") if r.is_error and r.result is not None else None
                 if isinstance(hint, str):
                     model_only.add(hint)
-            more = asked_left(asked, outcomes, worded) and step < max_steps - 2
+            more = asked_left(asked, outcomes, passed) and step < max_steps - 2
             # the tool's own phrase answers this step when it fills and nothing was asked it
             # does not answer: no model step just to word it (assistant/phrase.py)
             # (a look-up's phrase too when more is asked: the turn goes on, and the person hears

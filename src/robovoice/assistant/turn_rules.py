@@ -28,19 +28,20 @@ def ran_calls(outcomes: Sequence[ToolReturned]) -> list[ToolReturned]:
     return [o for o in outcomes if o.error != NOT_REQUESTED]
 
 
-def done(outcomes: Sequence[ToolReturned], worded: int = 0) -> int:
-    """How many of the things asked are done: the calls that ran, and the look-ups answered
-    in words alone (`worded`); the next thing asked is `asked[done(...)]`."""
-    return len(ran_calls(outcomes)) + worded
+def done(outcomes: Sequence[ToolReturned], passed: int = 0) -> int:
+    """How many of the things asked are done: the calls that ran, and those the turn moved past
+    without one (`passed`: a look-up answered in words, a step whose refused call was made
+    again); the next thing asked is `asked[done(...)]`."""
+    return len(ran_calls(outcomes)) + passed
 
 
-def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], worded: int = 0) -> bool:
+def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: int = 0) -> bool:
     """A compound request with things asked that are not done yet; or a request whose first
     call was refused as what the person declined beside it ("Please don't switch the projector
     on. I only want to talk to Dr. Weber." — told only why, the model left the request undone)."""
-    if len(asked) == 1 and len(outcomes) == 1 and not worded and _reason(outcomes[0]) == ClauseKind.NEGATED.value:
+    if len(asked) == 1 and len(outcomes) == 1 and not passed and _reason(outcomes[0]) == ClauseKind.NEGATED.value:
         return True
-    return len(asked) > 1 and done(outcomes, worded) < len(asked)
+    return len(asked) > 1 and done(outcomes, passed) < len(asked)
 
 
 def _refusal_details(outcome: ToolReturned) -> dict[str, object]:
