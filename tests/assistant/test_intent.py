@@ -178,6 +178,12 @@ def test_courtesy_around_a_request_and_an_only_after_step() -> None:
      ("the hallway",)),  # corrected, and said again: one step
     ("Ring Anna and then go to the kitchen. Actually skip the kitchen, just Anna.", ("Ring Anna",)),
     ("Stop, stop! Go to the bathroom instead.", ("Stop", "Go to the bathroom instead")),
+    # a name after a relation says who it is; a request about that person again is the same call
+    ("I'd like a word with my son, Ben. Can you get him on the screen?", ("I'd like a word with my son Ben",)),
+    ("I want to see Ben, can you call him?", ("I want to see Ben",)),
+    # ... but what it is for does not make another request the same one
+    ("Ring Clara for me, and then put the projector on so I can see her properly.",
+     ("Ring Clara for me", "put the projector on so I can see her properly")),
 ])
 def test_more_everyday_ways_of_asking_and_correcting(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps

@@ -28,6 +28,7 @@ import re
 from dataclasses import dataclass
 from enum import Enum
 
+from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
     CONDITION,
     COURTESY,
@@ -48,6 +49,7 @@ from robovoice.assistant.lexicon import (
     NOT_THAT,
     OWN_PLAN,
     QUESTION_WORDS,
+    RELATIONS,
     TAG,
     WITHDRAWAL,
     base_form,
@@ -139,33 +141,6 @@ _STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|aroun
 _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
                         re.IGNORECASE)
-
-
-# --- splitting ------------------------------------------------------------------------------
-
-# Sentence ends, commas/semicolons, and the conjunctions that join requests.
-_SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
-    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*"
-    r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+"
-    r"|\s+[-\u2013\u2014]+\s+",  # "go to the bedroom - sorry, no, the living room"
-    re.IGNORECASE,
-)
-_LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
-
-
-# "go and charge", "come and find me": one request whose verb follows the "and", not two
-_GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
-
-
-# "would you be a dear and pop into the kitchen": courtesy around one request
-_BE_A_DEAR = re.compile(r"\bbe (?:a (?:dear|love|darling|pet|sweetheart|star|treasure|gem)|an angel|good) and\s+",
-                        re.IGNORECASE)
-
-
-def split_clauses(text: str) -> list[str]:
-    text = _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text.strip()))
-    parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)]
-    return [p for p in parts if p]
 
 
 # --- classifying ----------------------------------------------------------------------------
@@ -323,6 +298,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
         if kind is ClauseKind.REQUEST and any(c.kind is kind and words(c.text) == words(part) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
+        if kind is ClauseKind.REQUEST and _BACK_TO_SOMEONE.match(part) and not _NAME.search(part) and any(
+                c.kind is kind and (RELATIONS & set(words(c.text)) or _NAME.search(c.text)) for c in clauses):
+            kind = ClauseKind.STATEMENT  # "a word with my son Ben. Can you get him on the screen?": that call again
         if kind is ClauseKind.REQUEST and when_only:
             kind = ClauseKind.NEGATED  # "Later on, after lunch, you can go back to your charger"
         when_only = bool(LATER_ONLY.match(bare)) or (when_only and not bare)
@@ -362,6 +340,12 @@ _NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
+
+
+# A request about someone an earlier request named ("…, can you get him on the screen?") asks for that again.
+# (not in what it is for: "put the projector on so I can see her" is a thing of its own)
+_BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
+_NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
 
 
 def _first_asked(clauses: list[Clause]) -> int | None:

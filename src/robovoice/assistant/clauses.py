@@ -1,0 +1,38 @@
+"""An utterance cut into clauses (`intent.read_request` reads each): at sentence ends, commas,
+dashes and the conjunctions that join requests, keeping together what is one request ("go and
+charge", "be a dear and pop in") and one name ("Dr. Weber", "my son, Ben")."""
+
+from __future__ import annotations
+
+import re
+
+from robovoice.assistant.lexicon import RELATIONS
+
+# Sentence ends, commas/semicolons, and the conjunctions that join requests.
+_SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
+    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*"
+    r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+"
+    r"|\s+[-\u2013\u2014]+\s+",  # "go to the bedroom - sorry, no, the living room"
+    re.IGNORECASE,
+)
+_LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
+
+
+# "go and charge", "come and find me": one request whose verb follows the "and", not two
+_GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
+
+
+# "would you be a dear and pop into the kitchen": courtesy around one request
+_BE_A_DEAR = re.compile(r"\bbe (?:a (?:dear|love|darling|pet|sweetheart|star|treasure|gem)|an angel|good) and\s+",
+                        re.IGNORECASE)
+
+
+# "ring my son, Ben": the name says who the relation is, not another thing asked
+_APPOSITIVE = re.compile(r"\b((?:my|your|our) (?:" + "|".join(sorted(RELATIONS)) + r"))\s*,\s*(?=(?-i:[A-Z][a-z]+)\b)",
+                         re.IGNORECASE)
+
+
+def split_clauses(text: str) -> list[str]:
+    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text.strip())))
+    parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)]
+    return [p for p in parts if p]
