@@ -5,8 +5,9 @@ from __future__ import annotations
 
 import pytest
 
+from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.gate import NOT_REQUESTED, refusal
-from robovoice.assistant.intent import ClauseKind, read_request, split_clauses
+from robovoice.assistant.intent import ClauseKind, read_request
 from robovoice.llm.base import ToolSpec
 
 NAV = ToolSpec("navigate_to", "drive")
