@@ -36,10 +36,7 @@ from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import found_phrase, phrase_answer, result_phrase
 from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
-from robovoice.assistant.speech_guard import (
-    MODEL_ONLY,
-    TurnActions,
-)
+from robovoice.assistant.speech_guard import MODEL_ONLY, TurnActions
 from robovoice.assistant.turn_rules import (
     asked_left,
     bounded_history,
@@ -170,7 +167,7 @@ class Assistant:
             lookup_only, fitting = False, []
             try:
                 text, requested, guessed = await model_step(self.backend, messages, specs, metrics, emit, model_only,
-                                                                  TurnActions(calls, outcomes, read_only))
+                                                            TurnActions(calls, outcomes, read_only))
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
                 fell_back = True
