@@ -9,7 +9,7 @@ from typing import Any
 
 import pytest
 
-from robovoice.assistant.confirm import DECLINED, Confirmations, question, reply_to_question
+from robovoice.assistant.confirm import DECLINED, Confirmations, confirm_question, reply_to_question
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.gate import CONFIRM, NOT_REQUESTED
 from robovoice.assistant.loop import Assistant, TurnResult
@@ -72,9 +72,9 @@ def test_anything_else_is_no_answer(text: str) -> None:
 
 def test_the_question_is_filled_from_the_arguments_or_not_asked() -> None:
     voice = {"start_video_call": VoiceDecl(say=VoicePhrases(confirm="Shall I call {contact}?"))}
-    assert question(voice, "start_video_call", {"contact": "Anna"}) == "Shall I call Anna?"
-    assert question(voice, "start_video_call", {}) is None  # cannot be said whole: not asked
-    assert question(voice, "navigate_to", {"target": "kitchen"}) is None  # declares none
+    assert confirm_question(voice, "start_video_call", {"contact": "Anna"}) == "Shall I call Anna?"
+    assert confirm_question(voice, "start_video_call", {}) is None  # cannot be said whole: not asked
+    assert confirm_question(voice, "navigate_to", {"target": "kitchen"}) is None  # declares none
 
 
 async def test_a_doubtful_call_is_held_asked_about_and_run_on_yes_without_the_model() -> None:

@@ -46,7 +46,7 @@ def reply_to_question(text: str) -> bool | None:
     return None
 
 
-def question(voice: Mapping[str, VoiceDecl], name: str, arguments: Mapping[str, Any]) -> str | None:
+def confirm_question(voice: Mapping[str, VoiceDecl], name: str, arguments: Mapping[str, Any]) -> str | None:
     """The tool's confirm question filled from the call's arguments; None when it declares
     none (or it does not fill: the call then runs unasked, as every call did before)."""
     decl = voice.get(name)
@@ -70,8 +70,8 @@ class Confirmations:
         self.window_s = window_s
         self._held: Held | None = None
 
-    def hold(self, request: ToolCallRequested, question_: str) -> None:
-        self._held = Held(request, question_, self._clock())
+    def hold(self, request: ToolCallRequested, asked: str) -> None:
+        self._held = Held(request, asked, self._clock())
 
     @property
     def held(self) -> Held | None:

@@ -88,12 +88,12 @@ def question(refused: Mapping[str, Any]) -> str | None:
     return "Which one do you mean: " + (", ".join(named[:-1]) + " or " if len(named) > 1 else "") + named[-1] + "?"
 
 
-def held(name: str, question_: str) -> dict[str, Any]:
+def held(name: str, asked: str) -> dict[str, Any]:
     """The ``{error, message, hint, details}`` body of a call held until the person confirms it:
     it did not reach the robot (scored as refused), and `question` reads the question from it."""
-    log.info("held %s until the user confirms: %r", name, question_)
+    log.info("held %s until the user confirms: %r", name, asked)
     return {"error": NOT_REQUESTED, "message": f"not done yet: {name} waits for the user's yes",
-            "hint": _HINTS[CONFIRM], "details": {"tool": name, "reason": CONFIRM, "question": question_}}
+            "hint": _HINTS[CONFIRM], "details": {"tool": name, "reason": CONFIRM, "question": asked}}
 
 
 def said_after(reason: str) -> str | None:

@@ -16,7 +16,7 @@ from collections.abc import Awaitable, Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 from robovoice.assistant import turn_rules
-from robovoice.assistant.confirm import DECLINED, Confirmations, Held, question
+from robovoice.assistant.confirm import DECLINED, Confirmations, Held, confirm_question
 from robovoice.assistant.events import (
     BackendFailed,
     ToolCalled,
@@ -335,7 +335,7 @@ class Assistant:
             # runs unless the robot is known to stand still, where it would do nothing the person
             # asked for ("Wait, don't call anyone." answered "I am standing still.")
             refused = refused if await self._standing_still(voice) else None
-        if refused is None and doubtful and (asked := question(voice, request.name, request.arguments)):
+        if refused is None and doubtful and (asked := confirm_question(voice, request.name, request.arguments)):
             refused = held(request.name, asked)  # it never reaches the robot unless the person says yes
             self.confirmations.hold(request, asked)
         if refused is not None:  # the user did not ask for this: it never reaches the robot
