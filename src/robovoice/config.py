@@ -209,6 +209,13 @@ class LLMConfig(_Frozen):
     backends: tuple[BackendConfig, ...] = ()
 
 
+# the log-probability thresholds of [voice]: default, what a lower one does, and the switch that turns it off
+_LOGPROB_KEYS = {
+    "confidence_min_logprob": ("-0.6", "turns fewer transcripts away", "confidence_check"),
+    "confirm_below_logprob": ("-0.4", "asks less often", "confirm_doubtful"),
+}
+
+
 class VoiceConfig(_Frozen):
     """``[voice]``: the voice pipeline's settings, and the one place their defaults and limits
     live (`robovoice.voice.config.PipelineConfig.from_config` turns them into the pipeline's
@@ -282,13 +289,9 @@ class VoiceConfig(_Frozen):
     @classmethod
     def _min_logprob(cls, value: float, info: ValidationInfo) -> float:
         if not -10.0 <= value < 0.0:  # a mean log-probability is <= 0; below -10 nothing is ever turned away
-            if info.field_name == "confirm_below_logprob":
-                raise ValueError(f"confirm_below_logprob = {value}: give a mean token log-probability from -10 "
-                                 f"up to (not including) 0 (default -0.4; lower asks less often), or set "
-                                 f"confirm_doubtful = false")
-            raise ValueError(f"confidence_min_logprob = {value}: give a mean token log-probability from -10 "
-                             f"up to (not including) 0 (default -0.6; lower turns fewer transcripts away), "
-                             f"or set confidence_check = false")
+            default, lower, switch = _LOGPROB_KEYS[str(info.field_name)]
+            raise ValueError(f"{info.field_name} = {value}: give a mean token log-probability from -10 up to "
+                             f"(not including) 0 (default {default}; lower {lower}), or set {switch} = false")
         return value
 
     @model_validator(mode="after")

@@ -124,8 +124,8 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
     conversation's words and this utterance's): "get car on a video call" became Anna, "ring my
     sun" Dr. Weber, a garbled "Go man." the kitchen. A stem that begins another counts ("bed"
     names the bedroom), unless it is part of another listed value too ("that room" names none
-    of the living room, the bedroom, the bathroom); a value that is not listed counts as named when
-all its words were said ("the front room"); free text (a message) is not checked."""
+    of the living room, the bedroom, the bathroom); a value that is not listed counts as named
+    when all its words were said ("the front room"); free text (a message) is not checked."""
     said = {stem(w) for w in usual(heard)}
     choices = listed(parameters)
     missing = []

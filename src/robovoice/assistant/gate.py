@@ -77,11 +77,12 @@ def question(refused: Mapping[str, Any]) -> str | None:
     model step (which on the embedded model tends to make the same call again), or after a call
     held for `CONFIRM` ("Shall I call Anna?"); else None."""
     details = refused.get("details")
-    if isinstance(details, Mapping) and details.get("reason") == CONFIRM and isinstance(details.get("question"), str):
-        return str(details["question"])
-    if not isinstance(details, Mapping) or details.get("reason") != UNCLEAR:
+    if not isinstance(details, Mapping):
         return None
-    choices = details.get("choices")
+    if details.get("reason") == CONFIRM:
+        asked = details.get("question")
+        return asked if isinstance(asked, str) else None
+    choices = details.get("choices") if details.get("reason") == UNCLEAR else None
     if not isinstance(choices, list) or not choices:
         return None
     named = [str(c) for c in choices]

@@ -31,7 +31,7 @@ from robovoice.assistant.gate import NOT_REQUESTED, halts, held, refusal
 from robovoice.assistant.intent import Intent, read_request
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
-from robovoice.assistant.model_step import model_step, say
+from robovoice.assistant.model_step import Emit, model_step, say
 from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import found_phrase, phrase_answer, result_phrase
 from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
@@ -54,7 +54,6 @@ from robovoice.manifest.voice import VoiceDecl, tools_with_role
 log = logging.getLogger(__name__)
 
 Observer = Callable[[TurnEvent], Awaitable[None] | None]
-_Emit = Callable[[TurnEvent], Awaitable[None]]
 
 
 @dataclass(frozen=True, slots=True)
@@ -101,7 +100,7 @@ class Assistant:
     def history(self) -> Sequence[ChatMessage]:
         return tuple(self._history)
 
-    def _emitter(self, observer: Observer | None) -> _Emit:
+    def _emitter(self, observer: Observer | None) -> Emit:
         """The turn's observer: the conversation's own (constructor), then the turn's."""
         own = self._observer
 
@@ -172,7 +171,7 @@ class Assistant:
                 log.warning("no LLM backend answered: %s", exc)
                 fell_back = True
                 await emit(BackendFailed(str(exc), self.fallback_message))
-                await self._say(self.fallback_message, metrics, emit)
+                await say(self.fallback_message, metrics, emit)
                 replies.append(self.fallback_message)
                 break
             if requested and not specs:  # a call written as text on the no-tools step: not run
@@ -224,13 +223,13 @@ class Assistant:
                 spec = by_name.get(request.name)
                 called, returned = await self._run_tool(request, metrics, emit, intent, spec, said, doubtful)
                 ran.append((called, returned))
+                if returned.error == NOT_REQUESTED:
+                    refused.add(call_key(request))
                 messages.append(ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name))
                 if spec is not None and spec.read_only:
                     looked_up.add(call_key(request))
                 else:
                     looked_up.clear()  # an action may change what a look-up returns
-            refused.update(call_key(r) for r, (_, out) in zip(requested, ran, strict=True)
-                           if out.error == NOT_REQUESTED)
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
             fitting = turn_rules.refused_for_fit([r for _, r in ran])
@@ -246,7 +245,7 @@ class Assistant:
             phrase = phrase_answer(intent, self.tools.voice(), ran, {s.name for s in specs if s.read_only},
                                    continuing=more)
             if phrase is not None:
-                await self._say(phrase, metrics, emit)
+                await say(phrase, metrics, emit)
                 replies.append(phrase)
                 messages.append(ChatMessage("assistant", phrase))
                 if not more:
@@ -258,13 +257,13 @@ class Assistant:
                 messages.append(next_step())
         held_now = self.confirmations.held  # a call held this turn: its question is the last thing said
         if held_now is not None and not any(held_now.question in r for r in replies):
-            await self._say(held_now.question, metrics, emit)
+            await say(held_now.question, metrics, emit)
             replies.append(held_now.question)
             messages.append(ChatMessage("assistant", held_now.question))
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             words_ = found_phrase(self.tools.voice(), calls, outcomes, read_only) or wordless_reply(outcomes, read_only)
             log.info("the model ended the turn without words; said %r", words_)
-            await self._say(words_, metrics, emit)
+            await say(words_, metrics, emit)
             replies.append(words_)
             messages.append(ChatMessage("assistant", words_))
         reply = " ".join(r.strip() for r in replies if r.strip())
@@ -274,7 +273,7 @@ class Assistant:
         await emit(TurnFinished(reply, tuple(calls), steps))
         return TurnResult(reply, tuple(calls), tuple(outcomes), metrics, fell_back)
 
-    async def _answer_held(self, user: str, call: Held, yes: bool, metrics: TurnMetrics, emit: _Emit) -> TurnResult:
+    async def _answer_held(self, user: str, call: Held, yes: bool, metrics: TurnMetrics, emit: Emit) -> TurnResult:
         """The person's yes or no to a held call: it runs (unchecked: they confirmed it) with its
         phrase as the answer, or it is dropped. No model step either way."""
         messages = [ChatMessage("user", user)]
@@ -290,9 +289,8 @@ class Assistant:
                 outcomes, {n for n, s in specs.items() if s.read_only})
             messages += [ChatMessage("assistant", "", (request.to_history(),)),
                          ChatMessage("tool", returned.text, tool_call_id=request.id, name=request.name)]
-        await self._say(reply, metrics, emit)
-        self._history = bounded_history([*self._history, *messages, ChatMessage("assistant", reply)],
-                                        self.max_history_messages)
+        await say(reply, metrics, emit)
+        self._remember([*self._history, *messages, ChatMessage("assistant", reply)])
         metrics.mark("finished")
         await emit(TurnFinished(reply, calls, 0))
         return TurnResult(reply, calls, outcomes, metrics)
@@ -315,12 +313,8 @@ class Assistant:
             messages.append(ChatMessage("user", step_hint(intent.steps[0], intent.lookups[0], first=True)))
         return messages, intent
 
-    @staticmethod
-    async def _say(sentence: str, metrics: TurnMetrics, emit: _Emit) -> None:
-        await say(sentence, metrics, emit)
-
     async def _run_tool(
-        self, request: ToolCallRequested, metrics: TurnMetrics, emit: _Emit, intent: Intent | None,
+        self, request: ToolCallRequested, metrics: TurnMetrics, emit: Emit, intent: Intent | None,
         spec: ToolSpec | None, said: set[str], doubtful: bool = False,
     ) -> tuple[ToolCalled, ToolReturned]:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
@@ -362,6 +356,6 @@ class Assistant:
         poses = tools_with_role(voice, "pose")
         return bool(poses) and await PoseMotionProbe(self.tools, poses[0])() is False
 
-    def _remember(self, turn_messages: list[ChatMessage]) -> None:
+    def _remember(self, turn_messages: Sequence[ChatMessage]) -> None:
         """Keep a bounded history that starts at a user message (`turn_rules.bounded_history`)."""
         self._history = bounded_history(turn_messages, self.max_history_messages)

@@ -17,8 +17,8 @@ the call's arguments (`start`); its progress report's ``message``, ``progress``,
 ``percent`` (`progress`); the arguments and the top-level fields of the structured result
 (`success`), or of the error body ``error``, ``message``, ``hint`` (`failure`): see
 `result_fields`; `confirm` (the question asked before a call on words that may have been
-misheard) from the arguments. A field that is missing (or a value its format spec does not fit) gives no
-phrase at all: `fill` returns None, it never raises. The same section reaches MCP clients in
+misheard) from the arguments. A field that is missing (or a value its format spec does not
+fit) gives no phrase at all: `fill` returns None, it never raises. The same section reaches MCP clients in
 the tool's ``_meta`` under `META_KEY`, so a remote assistant reads it from ``tools/list``.
 """
 
