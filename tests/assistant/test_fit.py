@@ -137,3 +137,33 @@ def test_the_gate_asks_rather_than_calls_someone_nobody_named() -> None:
                                                       "bathroom, hallway, front door or charging dock?")
     negated = refusal(read_request("Don't call Anna."), spec, {"contact": "Anna"}, (), VOICE)
     assert negated is not None and question(negated) is None  # nothing to choose: it was declined
+
+
+def test_a_clause_that_opens_with_another_tools_words_does_not_fit_this_one() -> None:
+    """Text test v15: "hang up the call" started a second call with Anna ("call" is a word of
+    start_video_call's); the clause opens with end_video_call's words."""
+    text = "I'm finished talking to Ben, so please hang up the call."
+    body = refusal(read_request(text), SPECS["start_video_call"], {"contact": "Ben"}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == OTHER
+    assert refusal(read_request(text), SPECS["end_video_call"], {}, (), VOICE) is None
+    assert refusal(read_request("End this call and ring Clara."), SPECS["start_video_call"], {"contact": "Clara"},
+                   (), VOICE) is None
+
+
+def test_a_contact_named_in_the_correction_is_asked_for() -> None:
+    """Text test v15: "Call Clara - … Ring Ben instead." refused Ben, as if the call itself were declined."""
+    intent = read_request("Ring Ben - no, hold on, he's at work. Call Anna instead.")
+    assert refusal(intent, SPECS["start_video_call"], {"contact": "Anna"}, (), VOICE) is None
+    body = refusal(intent, SPECS["start_video_call"], {"contact": "Ben"}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == "negated"
+
+
+def test_there_after_a_short_name_for_the_place_is_that_place() -> None:
+    intent = read_request("Go down to the hall, and once you're there, give Ben a ring.")
+    assert refusal(intent, SPECS["navigate_to"], {"target": "hallway"}, (), VOICE) is None
+
+
+def test_a_pause_in_a_correction_does_not_fit_the_stop() -> None:
+    intent = read_request("Head over to the kitchen - no, wait, the bedroom.")
+    body = refusal(intent, SPECS["stop_robot"], {}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == OTHER

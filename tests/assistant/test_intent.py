@@ -311,3 +311,25 @@ def test_a_possessive_pronoun_names_nobody() -> None:
     refused = refusal(read_request("Could you ring mine?"), CALL, {"contact": "Anna"})
     assert refused is not None and refused["details"]["reason"] == "unclear"
     assert refusal(read_request("Ring a friend of mine, Clara."), CALL, {"contact": "Clara"}) is None
+
+
+def test_a_pause_in_a_correction_is_not_a_request_to_wait() -> None:
+    """Text test v15: "…, no, wait, the hallway" stopped the robot; the "wait" only holds the correction."""
+    intent = read_request("Head over to the kitchen - no, wait, the bedroom.")
+    assert intent.steps == ("the bedroom",)
+    assert [c.kind for c in intent.clauses if c.text == "wait"] == [ClauseKind.STATEMENT]
+    assert read_request("Go to the kitchen. Wait!").steps == ("Go to the kitchen", "Wait")  # no correction: a wait
+
+
+def test_a_when_in_what_the_request_is_for_does_not_put_it_off() -> None:
+    assert read_request("Pop into the bedroom so you're there when Anna rings.").steps == (
+        "Pop into the bedroom so you're there when Anna rings",)
+    # ... an "if" still does: what to do then, not now
+    assert read_request("Could you phone the doctor so I can talk to him if my chest hurts?").asks_action is False
+
+
+def test_a_colon_before_the_things_asked_splits_them() -> None:
+    assert read_request("Two jobs for you: switch the projector on, then drive to the kitchen.").steps == (
+        "switch the projector on", "drive to the kitchen")
+    # ... and the places listed after an announcement of them are each asked for
+    assert read_request("A couple of errands: the kitchen, then the bathroom.").steps == ("the kitchen", "the bathroom")

@@ -254,3 +254,14 @@ async def test_a_guess_is_looked_up_once_only() -> None:
 ])
 def test_the_robot_speaks_of_itself_in_the_first_person(sentence: str, spoken: str) -> None:
     assert in_first_person(sentence) == spoken
+
+
+async def test_the_persons_own_words_read_back_are_not_said() -> None:
+    """Text test v15: a small model answered a remark by reading it back to the person ("Dr. Weber
+    told me I ought to…"). Six words in a row of this turn's words are not the robot's to say."""
+    text = "My grandson tells me the garden looks much tidier since the spring."
+    result, _ = await scripted_turn([TextReply("My grandson tells me the garden looks much tidier. How lovely!")], text)
+    assert "grandson tells me" not in result.reply
+    assert "How lovely!" in result.reply
+    result, _ = await scripted_turn([TextReply("The garden sounds lovely.")], text)  # a few of the words: said
+    assert result.reply == "The garden sounds lovely."

@@ -12,7 +12,8 @@ from robovoice.assistant.lexicon import RELATIONS
 _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*"
     r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+"
-    r"|\s+[-\u2013\u2014]+\s+",  # "go to the bedroom - sorry, no, the living room"
+    r"|\s+[-\u2013\u2014]+\s+"  # "go to the bedroom - sorry, no, the living room"
+    r"|:\s+",  # "three things: go into the lounge, …" (not a time: "half 3:30")
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)

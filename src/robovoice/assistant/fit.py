@@ -16,6 +16,7 @@ the conversation before it, which says what the "yes" is for.
 
 from __future__ import annotations
 
+import itertools
 import re
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from typing import Any
@@ -76,9 +77,14 @@ def names(sentence: str, name: str, arguments: Mapping[str, Any]) -> bool:
     return any(_says(said, phrase) for phrase in vocabulary(name, (), arguments))
 
 
+# The courtesy a request may open with, before its verb: "could you please hang up the call"
+_COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|you|go ahead and)\b[\s,]*)+",
+                       re.IGNORECASE)
+
+
 def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
     requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
-    clauses = [_stems(c.text) for c in requests]
+    clauses = [_stems(_COURTESY.sub("", c.text.strip())) for c in requests]
     if any(_BACK_REFERENCE & set(words(c.text)) for c in requests):
         # "the thing that throws pictures on the wall... turn it off": what "it" is was said before
         clauses += [_stems(c.text) for c in intent.clauses]
@@ -88,12 +94,26 @@ def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
 
 
 def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[str, Any],
-         said: Collection[str] = ()) -> bool:
-    """Some request clause says a word of this call's vocabulary (True when none is declared)."""
+         said: Collection[str] = (), rivals: Iterable[Sequence[str]] = ()) -> bool:
+    """Some request clause says a word of this call's vocabulary (True when none is declared),
+    and does not open with a rival tool's words (`rivals`: the declared words of each tool
+    acting on the same thing) while this call's come later: "hang up the call" asks to end a
+    call, not to start one."""
     if not declared:
         return True
     phrases = vocabulary(name, declared, arguments)
-    return any(_says(clause, phrase) for clause in _request_stems(intent, said) for phrase in phrases)
+    others = [_stems(phrase) for phrase in itertools.chain.from_iterable(rivals)]
+    for clause in _request_stems(intent, said):
+        if not any(_says(clause, phrase) for phrase in phrases):
+            continue
+        if any(_opens(clause, p) for p in others) and not any(_opens(clause, p) for p in phrases):
+            continue
+        return True
+    return False
+
+
+def _opens(clause: Sequence[str], phrase: Sequence[str]) -> bool:
+    return bool(phrase) and list(clause[:len(phrase)]) == list(phrase)
 
 
 def fitting_tools(intent: Intent, declared: Mapping[str, Sequence[str]], but: str) -> list[str]:
@@ -149,6 +169,13 @@ def listed(parameters: Mapping[str, Any]) -> dict[str, list[str]]:
         if isinstance(values, list) and values:
             found[name] = [str(v) for v in values]
     return found
+
+
+def named_in(values: Iterable[str], heard: Iterable[str]) -> bool:
+    """Some word heard names one of the words of `values` (by stem, or a stem that begins it:
+    "the hall" names the hallway)."""
+    names = {stem(w) for w in usual(values)}
+    return any(_names(stem(w), names) for w in usual(heard))
 
 
 def _names(said: str, names: Collection[str]) -> bool:

@@ -20,10 +20,10 @@ from __future__ import annotations
 
 import logging
 import re
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, listed, unsaid, usual
+from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, listed, named_in, unsaid, usual
 from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.llm.base import ToolSpec
@@ -131,11 +131,23 @@ def halts(intent: Intent | None) -> bool:
 _BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)
 
 
-def _names_only_what_was_declined(name: str, intent: Intent) -> bool:
+def _siblings(name: str, declared: Mapping[str, Sequence[str]]) -> list[Sequence[str]]:
+    """The declared words of the other tools that act on the same thing (start_video_call and
+    end_video_call): between them the verb a request opens with says which is meant."""
+    subject = set(words(name.replace("_", " "))) - GENERIC_NAME_WORDS
+    return [phrases for tool, phrases in declared.items()
+            if tool != name and subject & set(words(tool.replace("_", " ")))]
+
+
+def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[str]) -> bool:
     """The tool's own name names a thing the user declined and no request mentions ("leave
     the projector alone" → set_projector_power), which its arguments (a yes/no) cannot show.
-    A request that refers back ("don't switch it off, switch it on") may mean the same thing."""
-    if any(c.kind is ClauseKind.REQUEST and _BACK_REFERENCE.search(c.text) for c in intent.clauses):
+    A request that refers back ("don't switch it off, switch it on") may mean the same thing,
+    and one that names the call's arguments asks for it ("call Clara - no, ring Ben instead")."""
+    requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
+    if any(_BACK_REFERENCE.search(c.text) for c in requests):
+        return False
+    if set(named) & {w for c in requests for w in words(c.text)}:
         return False
     subject = set(words(name.replace("_", " "))) - GENERIC_NAME_WORDS
     return bool(subject & intent.negated_words())
@@ -158,13 +170,14 @@ def refusal(
         named = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
         if named and set(named) <= intent.negated_words():
             why = ClauseKind.NEGATED.value
-        elif _names_only_what_was_declined(name, intent):
+        elif _names_only_what_was_declined(name, intent, named):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
-        elif named and intent.refers and not (usual(named) | RELATIONS) & usual([*said, *intent.words()]):
+        elif named and intent.refers and not RELATIONS & usual([*said, *intent.words()]) \
+                and not named_in(named, [*said, *intent.words()]):
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
-        elif not fits(intent, name, declared.get(name, ()), arguments, said):
+        elif not fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared)):
             why = OTHER  # "plug yourself in" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, [*said, *intent.words()]):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make

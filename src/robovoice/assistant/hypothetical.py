@@ -64,6 +64,10 @@ SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", 
 _LATE_CONDITION = re.compile(r"\s((?:if|when|whenever|in case)\s.+)$", re.IGNORECASE)
 # … but after these, "if" is "whether": "take a picture so I can see if the parcel's there"
 _WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sure)$", re.IGNORECASE)
+# … and a "when" after these belongs to what the request is for: "sit in the living room so
+# you're ready when I come in" is to be done now (an "if" still puts it off: "ring the doctor so
+# I can talk to her if I fall")
+_PURPOSE = re.compile(r"\b(?:so(?: that)? (?:you|i|we|he|she|they|it)|in order to|so as to)\b", re.IGNORECASE)
 _EMERGENCY = re.compile(r"\b(?:in (?:an|case of(?: an)?) emergency|if anything (?:happens|happened|goes wrong))\b",
                         re.IGNORECASE)
 # Said beside a "can you …?", these make it a question about ability: "Just out of interest, can
@@ -81,5 +85,7 @@ def conditional(request: str) -> bool:
         return True
     late = _LATE_CONDITION.search(request)
     if late is None or _WHETHER.search(request[:late.start()]):
+        return False
+    if late.group(1).lower().startswith("when") and _PURPOSE.search(request[:late.start()]):
         return False
     return not (COURTESY.match(late.group(1)) or ON_ARRIVAL.match(late.group(1)) or SEQUENCE.match(late.group(1)))

@@ -253,6 +253,13 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue  # "…, would you?", "…, dear": part of the clause before it
         bare = FILLER.sub("", part.strip()).strip()
         kind = classify(part)
+        if _LIST_INTRO.match(bare):  # "three little jobs for you: the hallway, then …": each is asked
+            clauses.append(Clause(part, ClauseKind.STATEMENT))
+            corrected = True
+            continue
+        if corrected and bare.lower() == "wait":
+            clauses.append(Clause(part, ClauseKind.STATEMENT))  # "…, no, wait, the hallway": a pause, not a stop
+            continue
         if _THAT_FIRST.match(bare):
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # "where are you? Tell me that first, …"
             continue
@@ -332,6 +339,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     return Intent(tuple(clauses), answering)
 
 
+_LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
+                         r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
 _THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."

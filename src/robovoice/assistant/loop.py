@@ -148,6 +148,8 @@ class Assistant:
         model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
         for tool in (tools := await self.tools.specs()):  # and their descriptions (a small model reads them back)
             model_only.add(tool.description, short_copies=False)
+        if isinstance(user, str):  # nor the person's own words read back to them ("Dr. Weber told me I ought to…")
+            model_only.add(user, short_copies=False)
         read_only = {s.name for s in tools if s.read_only}
         retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
         fitting: list[str] = []  # after a call that did not fit the request: the tools that do
