@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 from robovoice.llm.base import ToolSpec
-from robovoice.voice.vocabulary import MAX_HINT_CHARS, STOP_HINT, command_hint
+from robovoice.voice.confidence_eval import sim_hint
+from robovoice.voice.vocabulary import MAX_HINT_CHARS, STOP_HINT, command_hint, restore_titles
 
 NAVIGATE = ToolSpec("navigate_to", "Drive somewhere.", {
     "type": "object",
@@ -51,3 +52,16 @@ def test_a_long_catalog_is_cut_but_keeps_the_wake_phrase_and_stop_words() -> Non
     assert hint.startswith("Hey Jarvis. tool number 0, tool number 1")
     assert hint.endswith(STOP_HINT)
     assert ",." not in hint and ", ." not in hint
+
+
+def test_doctor_misheard_before_a_known_surname_is_the_title_again() -> None:
+    """Audio tests v4 and v6: Whisper wrote "Doctor Weber" as "dock to Weber", and the robot
+    drove to its dock. The sim's hint names Dr. Weber, so the title is put back."""
+    hint = sim_hint()
+    assert "Dr. Weber" in hint
+    assert restore_titles("Please call, dock to Weber.", hint) == "Please call, Dr. Weber."
+    assert restore_titles("get Doc Two Weber on a video call", hint) == "get Dr. Weber on a video call"
+    # only before a surname the robot knows, and only that mishearing
+    assert restore_titles("go to the dock to Webster", hint) == "go to the dock to Webster"
+    assert restore_titles("go back to the dock to charge", hint) == "go back to the dock to charge"
+    assert restore_titles("call dock to Weber", command_hint("hey jarvis", [NAVIGATE])) == "call dock to Weber"
