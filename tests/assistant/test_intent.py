@@ -333,3 +333,15 @@ def test_a_colon_before_the_things_asked_splits_them() -> None:
         "switch the projector on", "drive to the kitchen")
     # ... and the places listed after an announcement of them are each asked for
     assert read_request("A couple of errands: the kitchen, then the bathroom.").steps == ("the kitchen", "the bathroom")
+
+
+def test_scratch_that_takes_back_the_request_before_it() -> None:
+    """Text test v16: "Call Ben for me. Actually, scratch that, …" made the call ("scratch" read as a verb)."""
+    intent = read_request("Ring Clara, please. Actually, scratch that, just drive to the kitchen instead.")
+    assert intent.steps == ("just drive to the kitchen instead",)
+    assert read_request("Cancel that.").steps == ("Cancel that",)  # nothing before it to take back: a request
+
+
+def test_i_meant_after_a_no_is_the_correction_and_said_again_is_one_step() -> None:
+    assert read_request("Head to the hallway. No, sorry, I meant the bathroom.").steps == ("I meant the bathroom",)
+    assert read_request("Go to the kitchen - no, the bedroom, I mean the bedroom.").steps == ("the bedroom",)

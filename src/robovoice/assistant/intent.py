@@ -303,7 +303,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
-        if kind is ClauseKind.REQUEST and any(c.kind is kind and words(c.text) == words(part) for c in clauses):
+        if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == _said(part) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
         if kind is ClauseKind.REQUEST and _BACK_TO_SOMEONE.match(part) and not _NAME.search(part) and any(
                 c.kind is kind and (RELATIONS & set(words(c.text)) or _NAME.search(c.text)) for c in clauses):
@@ -321,8 +321,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                               ClauseKind.REQUEST if i in undone else c.kind) for i, c in enumerate(clauses)]
             kind, corrected = ClauseKind.NEGATED, not any(c.kind is ClauseKind.REQUEST for c in clauses)
         undone = undone if not bare else []  # "no, hang on, not the kitchen": the "no" still holds
-        if kind is ClauseKind.NEGATED and WITHDRAWAL.match(bare):
-            # "switch the projector on… actually, no, don't": the requests said before are withdrawn
+        if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or any(c.kind is ClauseKind.REQUEST for c in clauses)):
+            # "switch the projector on… actually, no, don't" / "…, scratch that": the requests said before are withdrawn
+            kind = ClauseKind.NEGATED
             undone = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST]
             corrected = bool(undone)
             clauses = [Clause(c.text, ClauseKind.NEGATED) if c.kind is ClauseKind.REQUEST else c for c in clauses]
@@ -355,6 +356,10 @@ _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # (not in what it is for: "put the projector on so I can see her" is a thing of its own)
 _BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
+
+
+def _said(part: str) -> list[str]:
+    return words(FILLER.sub("", part.strip()))
 
 
 def _first_asked(clauses: list[Clause]) -> int | None:

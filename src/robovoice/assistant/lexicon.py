@@ -16,7 +16,7 @@ def words(text: str) -> list[str]:
 # Said before or around a request without changing it.
 FILLER = re.compile(
     r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
-    r"next|finally|just|off you|i mean|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
+    r"next|finally|just|off you|i mean|i meant|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
     r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
     re.IGNORECASE,
 )
