@@ -321,7 +321,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                               ClauseKind.REQUEST if i in undone else c.kind) for i, c in enumerate(clauses)]
             kind, corrected = ClauseKind.NEGATED, not any(c.kind is ClauseKind.REQUEST for c in clauses)
         undone = undone if not bare else []  # "no, hang on, not the kitchen": the "no" still holds
-        if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or any(c.kind is ClauseKind.REQUEST for c in clauses)):
+        asked_before = any(c.kind is ClauseKind.REQUEST for c in clauses)
+        if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or asked_before):
             # "switch the projector on… actually, no, don't" / "…, scratch that": the requests said before are withdrawn
             kind = ClauseKind.NEGATED
             undone = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST]
