@@ -345,3 +345,10 @@ def test_scratch_that_takes_back_the_request_before_it() -> None:
 def test_i_meant_after_a_no_is_the_correction_and_said_again_is_one_step() -> None:
     assert read_request("Head to the hallway. No, sorry, I meant the bathroom.").steps == ("I meant the bathroom",)
     assert read_request("Go to the kitchen - no, the bedroom, I mean the bedroom.").steps == ("the bedroom",)
+
+
+def test_before_that_without_its_full_stop_still_puts_what_follows_first() -> None:
+    """Audio test v7: the transcript lost the full stop in "go to the bathroom. Before that, …"."""
+    assert read_request("drive to the kitchen before that, put the projector on.").steps == (
+        "put the projector on", "drive to the kitchen")
+    assert read_request("Ring Anna before that show starts.").steps == ("Ring Anna before that show starts",)
