@@ -14,7 +14,8 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+"
     r"|\s+[-\u2013\u2014]+\s+"  # "go to the bedroom - sorry, no, the living room"
     r"|:\s+"  # "three things: go into the lounge, …" (not a time: "half 3:30")
-    r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:,|$))",  # "go to the bathroom before that, switch …" (a transcript's lost stop)
+    # "go to the bathroom before that, switch …": a transcript that lost the full stop
+    r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:,|$))",
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
