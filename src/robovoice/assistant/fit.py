@@ -62,9 +62,14 @@ def _says(clause: Sequence[str], phrase: Sequence[str]) -> bool:
     return n > 0 and any(list(clause[i:i + n]) == list(phrase) for i in range(len(clause) - n + 1))
 
 
+def subject_words(name: str) -> set[str]:
+    """The words of a tool's name that say what it acts on: "start_video_call" → video, call."""
+    return set(words(name.replace("_", " "))) - GENERIC_NAME_WORDS
+
+
 def vocabulary(name: str, declared: Iterable[str], arguments: Mapping[str, Any]) -> list[list[str]]:
     """The phrases (as stems) any of which makes a request clause fit this call."""
-    own = [w for w in words(name.replace("_", " ")) if w not in GENERIC_NAME_WORDS]
+    own = sorted(subject_words(name))
     values = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
     said_aloud = sorted(usual(values) - set(values))  # "Dr. Weber": "doctor"
     return [[stem(w)] for w in own + values + said_aloud] + [_stems(phrase) for phrase in declared]

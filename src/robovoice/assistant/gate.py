@@ -23,7 +23,7 @@ import re
 from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.fit import GENERIC_NAME_WORDS, fits, fitting_tools, listed, named_in, unsaid, usual
+from robovoice.assistant.fit import fits, fitting_tools, listed, named_in, subject_words, unsaid, usual
 from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.llm.base import ToolSpec
@@ -134,9 +134,8 @@ _BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)
 def _siblings(name: str, declared: Mapping[str, Sequence[str]]) -> list[Sequence[str]]:
     """The declared words of the other tools that act on the same thing (start_video_call and
     end_video_call): between them the verb a request opens with says which is meant."""
-    subject = set(words(name.replace("_", " "))) - GENERIC_NAME_WORDS
-    return [phrases for tool, phrases in declared.items()
-            if tool != name and subject & set(words(tool.replace("_", " ")))]
+    subject = subject_words(name)
+    return [phrases for tool, phrases in declared.items() if tool != name and subject & subject_words(tool)]
 
 
 def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[str]) -> bool:
@@ -149,8 +148,7 @@ def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[s
         return False
     if set(named) & {w for c in requests for w in words(c.text)}:
         return False
-    subject = set(words(name.replace("_", " "))) - GENERIC_NAME_WORDS
-    return bool(subject & intent.negated_words())
+    return bool(subject_words(name) & intent.negated_words())
 
 
 def refusal(
@@ -168,18 +166,18 @@ def refusal(
     why = kind.value if kind is not None else None
     if why is None:
         named = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
+        heard = [*said, *intent.words()]  # what a "there", a "her" or a listed value can refer to
         if named and set(named) <= intent.negated_words():
             why = ClauseKind.NEGATED.value
         elif _names_only_what_was_declined(name, intent, named):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
-        elif named and intent.refers and not RELATIONS & usual([*said, *intent.words()]) \
-                and not named_in(named, [*said, *intent.words()]):
+        elif named and intent.refers and not RELATIONS & usual(heard) and not named_in(named, heard):
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
         elif not fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared)):
             why = OTHER  # "plug yourself in" and the projector
-        elif spec is not None and unsaid(spec.description, spec.parameters, arguments, [*said, *intent.words()]):
+        elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
         else:
             return None

@@ -303,7 +303,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
-        if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == _said(part) for c in clauses):
+        if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
         if kind is ClauseKind.REQUEST and _BACK_TO_SOMEONE.match(part) and not _NAME.search(part) and any(
                 c.kind is kind and (RELATIONS & set(words(c.text)) or _NAME.search(c.text)) for c in clauses):
