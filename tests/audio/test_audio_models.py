@@ -218,9 +218,13 @@ def test_piper_streams_one_chunk_per_sentence(piper: PiperSynthesizer) -> None:
 
 
 def test_piper_round_trip_through_moonshine(piper: PiperSynthesizer, moonshine: MoonshineTranscriber) -> None:
+    """Piper samples noise, so each rendering differs: about 1 in 15 of this sentence comes back
+    as "call anno in the video phone" (2 of 30 here, 27 Nov 2026). The typical round trip (the
+    median of five) must be clean, and no rendering may be far off."""
     text = "Please call Anna on the video phone."
-    heard = moonshine.transcribe(piper.synthesize(text)).text
-    assert word_error_rate(text, heard) <= 0.15, heard
+    heard = [moonshine.transcribe(piper.synthesize(text)).text for _ in range(5)]
+    errors = sorted(word_error_rate(text, h) for h in heard)
+    assert errors[2] <= 0.15 and errors[-1] <= 0.45, heard
 
 
 def test_whisper_transcribes_piper_speech(whisper: WhisperTranscriber) -> None:
