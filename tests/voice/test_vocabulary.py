@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from robovoice.llm.base import ToolSpec
 from robovoice.voice.confidence_eval import sim_hint
-from robovoice.voice.vocabulary import MAX_HINT_CHARS, STOP_HINT, command_hint, restore_titles
+from robovoice.voice.vocabulary import MAX_HINT_CHARS, STOP_HINT, command_hint, restore_end, restore_titles
 
 NAVIGATE = ToolSpec("navigate_to", "Drive somewhere.", {
     "type": "object",
@@ -65,3 +65,18 @@ def test_doctor_misheard_before_a_known_surname_is_the_title_again() -> None:
     assert restore_titles("go to the dock to Webster", hint) == "go to the dock to Webster"
     assert restore_titles("go back to the dock to charge", hint) == "go back to the dock to charge"
     assert restore_titles("call dock to Weber", command_hint("hey jarvis", [NAVIGATE])) == "call dock to Weber"
+
+
+def test_and_the_call_alone_is_end_the_call_again() -> None:
+    """CI (27 Nov 2026): "Hey Jarvis, end the call." over the remote's voice was heard as
+    "And the call.", which reads as talk, and the call went on. The sim's hint names the
+    end video call action, so a whole "and the (video) call" is restored."""
+    hint = sim_hint()
+    assert restore_end("And the call.", hint) == "End the call."
+    assert restore_end("and the video call, please.", hint) == "End the video call, please."
+    assert restore_end("And call!", hint) == "End call!"
+    # more than the subject words, or no end_* action the robot has: as heard
+    assert restore_end("And the call, was it long?", hint) == "And the call, was it long?"
+    assert restore_end("and the kitchen.", hint) == "and the kitchen."
+    assert restore_end("Go to the kitchen and the call.", hint) == "Go to the kitchen and the call."
+    assert restore_end("And the call.", command_hint("hey jarvis", [NAVIGATE, CALL])) == "And the call."

@@ -90,3 +90,22 @@ def restore_titles(text: str, hint: str) -> str:
     for surname in set(_TITLED.findall(hint)):
         text = re.sub(_DOCTOR_HEARD_AS + re.escape(surname) + r"\b", f"Dr. {surname}", text, flags=re.IGNORECASE)
     return text
+
+
+# Speech-to-text hears a short "end the call" as "and the call", above all over a remote voice
+# (CI, 27 Nov 2026), and the words then read as talk. Only a whole utterance of "and" plus an
+# end_* tool's subject words is restored: "and the call, was it long?" stays as heard.
+_END_ACTION = re.compile(r"\bend((?: [a-z]+)+)(?=[,.])")
+
+
+def restore_end(text: str, hint: str) -> str:
+    """`text` "And the call." written "End the call." when the hint names an end_* action
+    ("end video call") whose subject words are all the rest of `text`."""
+    for subject in _END_ACTION.findall(hint):
+        words = subject.split()
+        tail = r"(?:the\s+)?" + "".join(rf"(?:{re.escape(w)}\s+)?" for w in words[:-1]) + re.escape(words[-1])
+        restored = re.sub(rf"^\s*and\s+({tail})(\s*(?:,?\s*please)?[.!]*\s*)$", r"End \1\2", text,
+                          flags=re.IGNORECASE)
+        if restored != text:
+            return restored
+    return text
