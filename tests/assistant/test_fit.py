@@ -112,6 +112,13 @@ def test_the_gate_refuses_a_tool_nobody_asked_for_and_names_what_fits() -> None:
     ("Go to the door.", "navigate_to", {"target": "front door"}, []),  # the only door
     ("Go through to the front room.", "navigate_to", {"target": "front room"}, []),  # its own name, not listed
     ("Go to the room.", "navigate_to", {"target": "front room"}, ["front room"]),  # not all of it was said
+    # the places' other names in navigate_to's description ("bathroom (loo, toilet, ...)")
+    ("Pop to the loo for me.", "navigate_to", {"target": "bathroom"}, []),
+    ("Go and wait in the lounge.", "navigate_to", {"target": "living room"}, []),
+    ("Go through to the front room.", "navigate_to", {"target": "living room"}, []),  # a gloss said whole
+    ("Go through to the front.", "navigate_to", {"target": "living room"}, ["living room"]),  # the front door too
+    ("Wait by the entrance.", "navigate_to", {"target": "front door"}, []),
+    ("Pop to the loo for me.", "navigate_to", {"target": "kitchen"}, ["kitchen"]),
 ])
 def test_a_listed_argument_must_be_named_by_somebody(
         text: str, tool: str, arguments: dict[str, object], missing: list[str]) -> None:
@@ -167,3 +174,13 @@ def test_a_pause_in_a_correction_does_not_fit_the_stop() -> None:
     intent = read_request("Head over to the kitchen - no, wait, the bedroom.")
     body = refusal(intent, SPECS["stop_robot"], {}, (), VOICE)
     assert body is not None and body["details"]["reason"] == OTHER
+
+
+def test_there_refers_to_a_place_named_by_another_of_its_names() -> None:
+    """Text test v16: "...a drip in the loo. Could you nip in there and have a look?" The drive
+    to the bathroom was refused as referring to nothing: only the sim knew "loo"."""
+    text = "I think there's a drip in the loo. Could you nip in there and have a look?"
+    assert refusal(read_request(text), SPECS["navigate_to"], {"target": "bathroom"}, (), VOICE) is None
+    body = refusal(read_request("Could you nip in there and have a look?"), SPECS["navigate_to"],
+                   {"target": "bathroom"}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == "unclear"

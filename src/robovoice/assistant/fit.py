@@ -133,12 +133,18 @@ def fitting_tools(intent: Intent, declared: Mapping[str, Sequence[str]], but: st
 _FUNCTION_WORDS = frozenset({"the", "a", "an", "of", "my", "your", "to", "in", "on", "at", "and"})
 
 
-def _names_for(value: str, description: str) -> set[str]:
-    """The stems that name `value`: its own words as said aloud ("doctor" for "Dr."), and a
-    description's gloss in brackets right after it ("Anna (daughter)": "daughter")."""
-    own = usual(words(value))
+def glosses(value: str, description: str) -> list[str]:
+    """The other names a description gives `value` in brackets right after it: "Anna
+    (daughter)" -> ["daughter"], "bathroom (loo, toilet)" -> ["loo", "toilet"]."""
     gloss = re.search(re.escape(value) + r"\s*\(([^)]*)\)", description, re.IGNORECASE)
-    glossed = set(words(gloss.group(1))) if gloss is not None else set()
+    return [g.strip() for g in gloss.group(1).split(",") if g.strip()] if gloss is not None else []
+
+
+def _names_for(value: str, description: str) -> set[str]:
+    """The stems that name `value`: its own words as said aloud ("doctor" for "Dr."), and its
+    glosses' words."""
+    own = usual(words(value))
+    glossed = {w for g in glosses(value, description) for w in words(g)}
     return {stem(w) for w in (own | glossed) - _FUNCTION_WORDS}
 
 
@@ -160,10 +166,17 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
         names = _names_for(value, description)
         if value.lower() not in {v.lower() for v in choices[name]} and names and names <= said:
             continue  # the person's own name for it ("the front room"): the robot resolves it or says it cannot
+        if any(_said_whole(g, said) for g in glosses(value, description)):
+            continue  # "the front room": a gloss said whole, though "front" and "room" name others too
         others = [n for v in choices[name] if v.lower() != value.lower() for n in _names_for(v, description)]
         if names and not any(_names(s, names) and not any(s in n for n in others) for s in said):
             missing.append(value)
     return missing
+
+
+def _said_whole(phrase: str, said: Collection[str]) -> bool:
+    stems = {stem(w) for w in usual(words(phrase))} - _FUNCTION_WORDS
+    return bool(stems) and stems <= said
 
 
 def listed(parameters: Mapping[str, Any]) -> dict[str, list[str]]:

@@ -23,7 +23,7 @@ import re
 from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.fit import fits, fitting_tools, listed, named_in, subject_words, unsaid, usual
+from robovoice.assistant.fit import fits, fitting_tools, glosses, listed, named_in, subject_words, unsaid, usual
 from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.llm.base import ToolSpec
@@ -151,6 +151,15 @@ def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[s
     return bool(subject_words(name) & intent.negated_words())
 
 
+def _glossed(spec: ToolSpec | None, arguments: Mapping[str, Any]) -> list[str]:
+    """The words of the other names the tool's description gives the call's values ("the loo"
+    is the bathroom)."""
+    if spec is None:
+        return []
+    return [w for value in arguments.values() if isinstance(value, str)
+            for g in glosses(value, spec.description) for w in words(g)]
+
+
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
     voice: Mapping[str, VoiceDecl] | None = None,
@@ -171,7 +180,8 @@ def refusal(
             why = ClauseKind.NEGATED.value
         elif _names_only_what_was_declined(name, intent, named):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
-        elif named and intent.refers and not RELATIONS & usual(heard) and not named_in(named, heard):
+        elif named and intent.refers and not RELATIONS & usual(heard) and not named_in(
+                [*named, *_glossed(spec, arguments)], heard):
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
