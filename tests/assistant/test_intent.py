@@ -7,7 +7,8 @@ import pytest
 
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.gate import NOT_REQUESTED, refusal
-from robovoice.assistant.intent import ClauseKind, read_request
+from robovoice.assistant.intent import read_request
+from robovoice.assistant.reading import ClauseKind
 from robovoice.llm.base import ToolSpec
 
 NAV = ToolSpec("navigate_to", "drive")

@@ -21,8 +21,8 @@ import re
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import words
+from robovoice.assistant.reading import ClauseKind, Intent
 
 _SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus", "neighbor": "neighbour"}
 _BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
@@ -174,7 +174,7 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
     return missing
 
 
-def _said_whole(phrase: str, said: Collection[str]) -> bool:
+def _said_whole(phrase: str, said: set[str]) -> bool:
     stems = {stem(w) for w in usual(words(phrase))} - _FUNCTION_WORDS
     return bool(stems) and stems <= said
 

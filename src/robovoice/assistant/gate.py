@@ -24,8 +24,8 @@ from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
 from robovoice.assistant.fit import fits, fitting_tools, glosses, listed, named_in, subject_words, unsaid, usual
-from robovoice.assistant.intent import ClauseKind, Intent
 from robovoice.assistant.lexicon import RELATIONS, words
+from robovoice.assistant.reading import ClauseKind, Intent
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.voice import VoiceDecl
 

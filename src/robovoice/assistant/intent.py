@@ -25,8 +25,6 @@ decisions and their reasons are logged. Rules were written on the dev set only
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
-from enum import Enum
 
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
@@ -55,93 +53,7 @@ from robovoice.assistant.lexicon import (
     base_form,
     words,
 )
-
-
-class ClauseKind(Enum):
-    REQUEST = "request"
-    NEGATED = "negated"  # also postponed: "later", "not now"
-    ABILITY = "ability"
-    STATEMENT = "statement"
-    QUESTION = "question"
-    UNFINISHED = "unfinished"  # a request cut off before its object: "can you drive over to…"
-
-
-@dataclass(frozen=True, slots=True)
-class Clause:
-    text: str
-    kind: ClauseKind
-
-
-@dataclass(frozen=True, slots=True)
-class Intent:
-    """An utterance read clause by clause."""
-
-    clauses: tuple[Clause, ...]
-    answering: bool = False  # the words answer the robot's own question
-
-    @property
-    def asks_action(self) -> bool:
-        """Some clause asks the robot to do something now."""
-        return any(c.kind is ClauseKind.REQUEST for c in self.clauses)
-
-    @property
-    def _asked(self) -> tuple[Clause, ...]:
-        return tuple(c for c in self.clauses if c.kind in (ClauseKind.REQUEST, ClauseKind.QUESTION))
-
-    @property
-    def steps(self) -> tuple[str, ...]:
-        """The things asked, in the order they were said: the requests, and the questions
-        asked beside them ("tell me where you are and how charged you are")."""
-        return tuple(c.text for c in self._asked)
-
-    @property
-    def lookups(self) -> tuple[bool, ...]:
-        """For each of `steps`: whether it only asks to be told something ("where are you",
-        "tell me your battery level"), which a look-up answers and no action may."""
-        return tuple(c.kind is ClauseKind.QUESTION or bool(_TELL_ME.match(FILLER.sub("", c.text.strip())))
-                     for c in self._asked)
-
-    @property
-    def refusal(self) -> ClauseKind | None:
-        """Why no action was asked for (the first non-request kind that explains it), or None."""
-        if self.asks_action:
-            return None
-        for kind in (ClauseKind.NEGATED, ClauseKind.UNFINISHED, ClauseKind.ABILITY, ClauseKind.STATEMENT):
-            if any(c.kind is kind for c in self.clauses):
-                return kind
-        return ClauseKind.QUESTION if self.clauses else None
-
-    @property
-    def carries_on(self) -> bool:
-        """The words say to carry on as things are ("keep going", "don't stop") and ask nothing
-        new: a stop or cancel is the one thing not asked for."""
-        return not self.asks_action and any(
-            (c.kind is ClauseKind.NEGATED and _STOPPING.search(c.text))
-            or (c.kind is ClauseKind.STATEMENT and _CARRY_ON.match(FILLER.sub("", c.text.strip())))
-            for c in self.clauses)
-
-    @property
-    def refers(self) -> bool:
-        """A request points at something by a word that names nothing ("go there", "call her")."""
-        return any(c.kind is ClauseKind.REQUEST and _REFERENCE.search(c.text) for c in self.clauses)
-
-    def words(self) -> set[str]:
-        return {w for c in self.clauses for w in words(c.text)}
-
-    def negated_words(self) -> set[str]:
-        """Words said only in negated clauses (what the user asked *not* to do)."""
-        negated = {w for c in self.clauses if c.kind is ClauseKind.NEGATED for w in words(c.text)}
-        asked = {w for c in self.clauses if c.kind is ClauseKind.REQUEST for w in words(c.text)}
-        return negated - asked
-
-
-_TELL_ME = re.compile(
-    r"(?:please\s+)?(?:(?:tell|let)\s+me|(?:try )?find out)\b(?!\s+(?:go|drive|come|call|talk|speak))", re.IGNORECASE)
-_STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|around))\b", re.IGNORECASE)
-_CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
-_REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
-                        re.IGNORECASE)
-
+from robovoice.assistant.reading import Clause, ClauseKind, Intent
 
 # --- classifying ----------------------------------------------------------------------------
 

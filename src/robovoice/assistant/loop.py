@@ -28,13 +28,14 @@ from robovoice.assistant.events import (
     notify,
 )
 from robovoice.assistant.gate import NOT_REQUESTED, halts, held, refusal
-from robovoice.assistant.intent import Intent, read_request
+from robovoice.assistant.intent import read_request
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.model_step import Emit, model_step, say
 from robovoice.assistant.motion_probe import PoseMotionProbe
 from robovoice.assistant.phrase import found_phrase, phrase_answer, result_phrase
 from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
+from robovoice.assistant.reading import Intent
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import MODEL_ONLY, TurnActions
 from robovoice.assistant.turn_rules import (

@@ -30,7 +30,7 @@ from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.assistant.gate import NOT_REQUESTED, question
-from robovoice.assistant.intent import ClauseKind, Intent
+from robovoice.assistant.reading import ClauseKind, Intent
 from robovoice.manifest.voice import VoiceDecl, fill, result_fields
 
 # Errors the assistant itself makes up, not the robot's: the model must answer them (their hints).

@@ -9,7 +9,7 @@ from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolReturned
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
-from robovoice.assistant.intent import ClauseKind
+from robovoice.assistant.reading import ClauseKind
 from robovoice.llm.base import ChatMessage, ToolCallRequested, ToolSpec
 
 
