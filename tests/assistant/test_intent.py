@@ -353,3 +353,14 @@ def test_before_that_without_its_full_stop_still_puts_what_follows_first() -> No
     assert read_request("drive to the kitchen before that, put the projector on.").steps == (
         "put the projector on", "drive to the kitchen")
     assert read_request("Ring Anna before that show starts.").steps == ("Ring Anna before that show starts",)
+
+
+def test_a_look_in_a_place_is_asked_of_the_robot() -> None:
+    """Dev look-5 (and text test v15's "Have a quick look in the bathroom, then …"): "have"
+    opens questions, so the look read as one and the drive there was refused."""
+    assert read_request("Take a peek into the hallway, please.").steps == ("Take a peek into the hallway",)
+    assert read_request("Have a good look round the kitchen.").asks_action
+    # a question, the person's own look, and a look at the robot's own things stay as they were
+    assert not read_request("Have you had a look at the kitchen?").asks_action
+    assert not read_request("I had a look in the bedroom.").asks_action
+    assert not read_request("Have a look through your camera.").asks_action

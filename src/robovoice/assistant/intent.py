@@ -90,6 +90,9 @@ _STOP = re.compile(r"\bstop\b", re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
+# "have a look in the bathroom": asked of the robot, though "have" opens questions ("have you …?")
+_LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
+                   r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b", re.IGNORECASE)
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
 # An imperative's shape around a verb no list has ("trundle over to the door", "wheel yourself
@@ -141,6 +144,8 @@ def classify(clause: str) -> ClauseKind:
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
     if first in IMPERATIVES or ((shape := _SHAPE.match(lowered)) and not _NOT_A_VERB.match(shape.group(1))):
+        return ClauseKind.REQUEST
+    if _LOOK.match(text):
         return ClauseKind.REQUEST
     if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
         return ClauseKind.QUESTION
