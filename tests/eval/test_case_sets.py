@@ -92,3 +92,13 @@ def test_audio_case_files_run_the_sim_slow_enough_for_a_spoken_stop_during_a_dri
 
     assert eval_sim_speed(load_cases(DATA / "audio-test-3.jsonl"), 10.0) == AUDIO_SIM_SPEED == 2.0
     assert eval_sim_speed(load_cases(DATA / "text.jsonl"), 10.0) == 10.0
+
+
+def test_the_dev_set_uses_no_test_sets_phrasing() -> None:
+    """Dev cases are written in other words than any test set's, or a figure on a test set
+    would be one the rules were tuned on (a dev case once repeated v4-cam-1 word for word)."""
+    dev = {str(c.text).lower() for c in load_cases(DATA / "text.jsonl")}
+    tests = sorted(DATA.glob("text-test*.jsonl"))
+    assert len(tests) >= 17
+    for path in tests:
+        assert not dev & {str(c.text).lower() for c in load_cases(path)}, path.name
