@@ -364,3 +364,13 @@ def test_a_look_in_a_place_is_asked_of_the_robot() -> None:
     assert not read_request("Have you had a look at the kitchen?").asks_action
     assert not read_request("I had a look in the bedroom.").asks_action
     assert not read_request("Have a look through your camera.").asks_action
+
+
+def test_after_alone_orders_the_steps() -> None:
+    """Dev after-1..3 (audio test v7's "go to the living room and after let's go to the kitchen"
+    did only the first)."""
+    assert read_request("Put the projector on and after ring Clara.").steps == ("Put the projector on", "ring Clara")
+    assert read_request("Go to the hall and afterwards, the bedroom.").steps == ("Go to the hall", "the bedroom")
+    # "after lunch" is when, not the next step; "after you've …" is what comes first
+    assert read_request("Drive to the kitchen and after lunch we could call Ben.").steps == ("Drive to the kitchen",)
+    assert read_request("After you've been to the hall, ring Ben.").steps == ("go to the hall", "ring Ben")

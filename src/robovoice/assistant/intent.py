@@ -170,6 +170,13 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue  # "…, would you?", "…, dear": part of the clause before it
         bare = FILLER.sub("", part.strip()).strip()
         kind = classify(part)
+        if (after := _AFTER.match(bare)) is not None:
+            rest = bare[after.end():]
+            if not rest and clauses:
+                continue  # "…, and after, the bedroom": an order word, as "then" is
+            if rest and classify(rest) is ClauseKind.REQUEST:
+                part = bare = rest  # "…, and after let's go to the kitchen": the next step
+                kind = ClauseKind.REQUEST
         if _LIST_INTRO.match(bare):  # "three little jobs for you: the hallway, then …": each is asked
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             corrected = True
@@ -258,6 +265,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     return Intent(tuple(clauses), answering)
 
 
+_AFTER = re.compile(r"^after(?:wards)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": that reads as no request
 _LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
                          r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
