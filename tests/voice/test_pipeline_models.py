@@ -171,8 +171,8 @@ async def test_a_video_calls_remote_voice_does_not_trigger(voice_models: VoiceMo
         await s.settle()
         state = s.sim.state
     assert s.log.of(WakeWordRejected), "the remote's wake phrase was heard and rejected"
-    heard = [t.text for t in s.log.of(TranscriptReady)]  # over the remote's voice: say what was heard
-    assert not state.in_call and state.nearest_place == "charging dock", heard
+    transcripts = [t.text for t in s.log.of(TranscriptReady)]  # over the remote's voice: say what was heard
+    assert not state.in_call and state.nearest_place == "charging dock", transcripts
     result = s.log.of(VoiceTurnFinished)[0].result
     assert result is not None and [c.name for c in result.calls] == ["end_video_call"]
 
