@@ -374,3 +374,22 @@ def test_after_alone_orders_the_steps() -> None:
     # "after lunch" is when, not the next step; "after you've …" is what comes first
     assert read_request("Drive to the kitchen and after lunch we could call Ben.").steps == ("Drive to the kitchen",)
     assert read_request("After you've been to the hall, ring Ben.").steps == ("go to the hall", "ring Ben")
+
+
+def test_a_place_after_a_no_corrects_only_the_last_request() -> None:
+    """Dev correct-1 (text test v17: "Turn the projector on, then go to the living room. No,
+    sorry, the bedroom." took the projector back too)."""
+    assert read_request("Switch the projector off and head to the hall. No, the kitchen.").steps == (
+        "Switch the projector off", "the kitchen")
+    # the fragments after the corrected request's verb go with it; a bare "no, don't" takes all back
+    assert read_request("Call Clara and then Ben. No, just Ben.").steps == ("just Ben",)
+    assert read_request("Turn the projector on and go to the hall. No, don't.").steps == ()
+
+
+def test_saying_it_is_not_asked_now_makes_a_can_you_an_ability_question() -> None:
+    """Dev notnow-1, 2 (text test v17: "I'm not asking you to do it now, but can you take
+    yourself off to charge …?" docked the robot)."""
+    assert not read_request("I'm not asking you to do that, but could you call Anna by yourself?").asks_action
+    assert not read_request("I don't need it done yet, but can you drive to the hall alone?").asks_action
+    # declining one thing is not saying the next request is only a question
+    assert read_request("I don't need you to go to the kitchen, but can you call Ben?").steps == ("can you call Ben",)

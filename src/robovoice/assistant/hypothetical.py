@@ -74,7 +74,10 @@ _EMERGENCY = re.compile(r"\b(?:in (?:an|case of(?: an)?) emergency|if anything (
 # you …?", "Could you ring the doctor? I just want to know you can."
 JUST_ASKING = re.compile(
     r"\b(?:(?:just|only) (?:asking|wondering|curious)|out of (?:interest|curiosity)|hypothetically|in theory|"
-    r"want(?:ed)? to know (?:(?:if|whether|that) )?you (?:can|could))\b",
+    r"want(?:ed)? to know (?:(?:if|whether|that) )?you (?:can|could)|"
+    # "I'm not asking you to do it now, but can you …?": said to be not a request
+    r"not (?:asking|telling) you to (?:do (?:it|that|this|anything)|go anywhere)|"
+    r"(?:don'?t|do not) need (?:you to do )?(?:it|that|this)(?: done)? (?:now|today|yet))\b",
     re.IGNORECASE)
 QUESTION_FORM = re.compile(r"^(?:can|could|would|will) you\b", re.IGNORECASE)
 

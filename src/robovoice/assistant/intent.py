@@ -244,6 +244,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses = [Clause(c.text, ClauseKind.NEGATED if i in named else
                               ClauseKind.REQUEST if i in undone else c.kind) for i, c in enumerate(clauses)]
             kind, corrected = ClauseKind.NEGATED, not any(c.kind is ClauseKind.REQUEST for c in clauses)
+        if kind is ClauseKind.REQUEST and undone and _fragment(part):
+            # "turn the projector on, then go to the living room. No, the bedroom": the place
+            # corrects the last request (with the fragments after its verb), not the ones before
+            start = max((i for i in undone if not _fragment(clauses[i].text)), default=0)
+            clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and i < start else c
+                       for i, c in enumerate(clauses)]
         undone = undone if not bare else []  # "no, hang on, not the kitchen": the "no" still holds
         asked_before = any(c.kind is ClauseKind.REQUEST for c in clauses)
         if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or asked_before):
