@@ -184,3 +184,12 @@ def test_there_refers_to_a_place_named_by_another_of_its_names() -> None:
     body = refusal(read_request("Could you nip in there and have a look?"), SPECS["navigate_to"],
                    {"target": "bathroom"}, (), VOICE)
     assert body is not None and body["details"]["reason"] == "unclear"
+
+
+def test_a_places_other_name_fits_its_drive_whatever_the_verb() -> None:
+    """Dev alias-1 (text test v18: "Would you trundle out to the hall for me?" was refused: no
+    declared verb, and "hall" is not "hallway")."""
+    text = read_request("Would you mosey on down to the loo?")
+    assert refusal(text, SPECS["navigate_to"], {"target": "bathroom"}, (), VOICE) is None
+    body = refusal(text, SPECS["navigate_to"], {"target": "kitchen"}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == OTHER

@@ -393,3 +393,16 @@ def test_saying_it_is_not_asked_now_makes_a_can_you_an_ability_question() -> Non
     assert not read_request("I don't need it done yet, but can you drive to the hall alone?").asks_action
     # declining one thing is not saying the next request is only a question
     assert read_request("I don't need you to go to the kitchen, but can you call Ben?").steps == ("can you call Ben",)
+
+
+def test_a_place_after_not_that_one_replaces_it_and_just_that_is_said_again() -> None:
+    """Dev meant-1, meant-2, theory-1 (text test v18: "…, then the kitchen, sorry, not the
+    kitchen, I meant the living room" dropped the living room; "what am I saying" became a
+    step; "Could you, in theory, show a film …?" switched the projector on)."""
+    assert read_request("Go to the hall, then the kitchen, no, not the kitchen, I mean the bedroom.").steps == (
+        "Go to the hall", "I mean the bedroom")
+    assert read_request("Ring Ben, no, silly me, Clara.").steps == ("Clara",)
+    # "just the bedroom" after a withdrawal names what is still asked: not a second step
+    assert read_request("Go to the bedroom and put the projector on, well, skip the projector, just the bedroom."
+                        ).steps == ("Go to the bedroom",)
+    assert not read_request("Would you, hypothetically, drive to the kitchen?").asks_action

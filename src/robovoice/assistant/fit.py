@@ -99,14 +99,14 @@ def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
 
 
 def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[str, Any],
-         said: Collection[str] = (), rivals: Iterable[Sequence[str]] = ()) -> bool:
-    """Some request clause says a word of this call's vocabulary (True when none is declared),
-    and does not open with a rival tool's words (`rivals`: the declared words of each tool
-    acting on the same thing) while this call's come later: "hang up the call" asks to end a
-    call, not to start one."""
+         said: Collection[str] = (), rivals: Iterable[Sequence[str]] = (), aliases: Iterable[str] = ()) -> bool:
+    """Some request clause says a word of this call's vocabulary (True when none is declared;
+    `aliases`: the words of its values' other names, "hall" for the hallway), and does not open
+    with a rival tool's words (`rivals`: the declared words of each tool acting on the same
+    thing) while this call's come later: "hang up the call" asks to end a call, not to start one."""
     if not declared:
         return True
-    phrases = vocabulary(name, declared, arguments)
+    phrases = vocabulary(name, declared, arguments) + [[stem(w)] for w in aliases]
     others = [_stems(phrase) for phrase in itertools.chain.from_iterable(rivals)]
     for clause in _request_stems(intent, said):
         if not any(_says(clause, phrase) for phrase in phrases):

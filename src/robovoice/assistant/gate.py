@@ -185,7 +185,8 @@ def refusal(
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
-        elif not fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared)):
+        elif not fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared),
+                      _glossed(spec, arguments)):
             why = OTHER  # "plug yourself in" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make

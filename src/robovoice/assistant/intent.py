@@ -229,6 +229,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
         if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
+        if kind is ClauseKind.REQUEST and _JUST.match(part.strip()) and _fragment(part) and any(
+                c.kind is kind and set(words(bare)) - _ARTICLES <= set(words(c.text)) for c in clauses):
+            kind = ClauseKind.STATEMENT  # "…, forget about the projector, just the bedroom": asked already
         if kind is ClauseKind.REQUEST and _BACK_TO_SOMEONE.match(part) and not _NAME.search(part) and any(
                 c.kind is kind and (RELATIONS & set(words(c.text)) or _NAME.search(c.text)) for c in clauses):
             kind = ClauseKind.STATEMENT  # "a word with my son Ben. Can you get him on the screen?": that call again
@@ -243,7 +246,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # with none left, a place or a person said next is the one meant ("no, not the kitchen, the hallway")
             clauses = [Clause(c.text, ClauseKind.NEGATED if i in named else
                               ClauseKind.REQUEST if i in undone else c.kind) for i, c in enumerate(clauses)]
-            kind, corrected = ClauseKind.NEGATED, not any(c.kind is ClauseKind.REQUEST for c in clauses)
+            kind, corrected = ClauseKind.NEGATED, True  # "…, not the kitchen, I meant the living room"
         if kind is ClauseKind.REQUEST and undone and _fragment(part):
             # "turn the projector on, then go to the living room. No, the bedroom": the place
             # corrects the last request (with the fragments after its verb), not the ones before
@@ -264,13 +267,17 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         clauses.append(Clause(part, kind))
     if any(JUST_ASKING.search(c.text) for c in clauses):  # "Out of interest, can you …?"
+        # "Could you, in theory, show a film …?": the "could you" is a clause of its own
+        asked = bool(QUESTION_FORM.match(FILLER.sub("", text.strip())))
         clauses = [Clause(c.text, ClauseKind.ABILITY) if c.kind is ClauseKind.REQUEST
-                   and QUESTION_FORM.match(FILLER.sub("", c.text.strip())) else c for c in clauses]
+                   and (asked or QUESTION_FORM.match(FILLER.sub("", c.text.strip()))) else c for c in clauses]
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
     return Intent(tuple(clauses), answering)
 
 
+_JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+_ARTICLES = frozenset({"the", "a", "my", "your", "to"})
 _AFTER = re.compile(r"^after(?:wards)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": that reads as no request
 _LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
                          r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)

@@ -17,7 +17,8 @@ def words(text: str) -> list[str]:
 FILLER = re.compile(
     r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
     r"next|finally|just|off you|i mean|i meant|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
-    r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm)\b[\s,]*)+",
+    r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm|"
+    r"what am i saying|what was i thinking|silly me)\b[\s,]*)+",
     re.IGNORECASE,
 )
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
