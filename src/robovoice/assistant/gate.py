@@ -176,17 +176,18 @@ def refusal(
     if why is None:
         named = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
         heard = [*said, *intent.words()]  # what a "there", a "her" or a listed value can refer to
+        glossed = _glossed(spec, arguments)  # the values' other names: "the loo" is the bathroom
         if named and set(named) <= intent.negated_words():
             why = ClauseKind.NEGATED.value
         elif _names_only_what_was_declined(name, intent, named):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
         elif named and intent.refers and not RELATIONS & usual(heard) and not named_in(
-                [*named, *_glossed(spec, arguments)], heard):
+                [*named, *glossed], heard):
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
         elif not fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared),
-                      _glossed(spec, arguments)):
+                      glossed):
             why = OTHER  # "plug yourself in" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make

@@ -89,10 +89,10 @@ _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|cal
 _STOP = re.compile(r"\bstop\b", re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
-# Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 # "have a look in the bathroom": asked of the robot, though "have" opens questions ("have you …?")
 _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
                    r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b", re.IGNORECASE)
+# Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
 # An imperative's shape around a verb no list has ("trundle over to the door", "wheel yourself
