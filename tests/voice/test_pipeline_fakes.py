@@ -160,6 +160,36 @@ async def test_a_stop_acts_at_its_first_pause_without_waiting_for_the_end_of_the
     assert [e.text for e in s.log.of(SentenceSpoken) if e.kind == "stop"] == ["Stopped."]
 
 
+async def test_what_follows_an_addressed_stop_still_reaches_the_model(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    """Audio test v9's "Hey Jarvis, stop there, and then go back to your charger.": the stop acts
+    at the pause, the complete-looking "Stop there." does not end the utterance early, and the
+    whole request still goes to the model, whose dock call is not cancelled by that stop."""
+    server.push(ToolCallReply((ScriptedCall("return_to_dock", {}),)))
+    # the first pause's transcript (wake tone + the first words) is the stop, a longer one is all
+    # of it; later short ones (the robot's own "Stopped.") are heard as nothing
+    first = iter(["Hey Jarvis, stop there."])
+    transcriber.by_length = lambda seconds: (
+        next(first, "") if seconds < 1.5 else "Hey Jarvis, stop there, and then go back to your charger.")
+    async with voice_session(fakes, backend, speed=2.0, sim_speed=2.0, setup="driving") as s:
+        assert s.sim.state.moving
+        # 0.4 s between: longer than the 300 ms early end, shorter than the 500 ms end of turn
+        await s.say(join(wake_command(0.5), silence(MODEL_FORMAT, 0.4), babble(1.2, seed=3)))
+        stopped = await s.log.wait_for(RobotStopped, timeout=10)
+        finished = await s.log.wait_for(VoiceTurnFinished, timeout=30)
+        await s.settle()
+    assert stopped.ok
+    [heard] = s.log.of(StopHeard)
+    [started] = s.log.of(VoiceTurnStarted)
+    assert started.text == "stop there, and then go back to your charger."
+    assert heard.cancelled_turn is None  # the stop came before the command turn, and spared it
+    assert not finished.cancelled and finished.result is not None
+    assert [c.name for c in finished.result.calls] == ["return_to_dock"]
+    assert server.requests and any(m.get("content") == started.text for m in server.requests[0].messages)
+    assert not [e for e in s.log.of(UtteranceIgnored) if e.reason == "no_wake_word"]
+
+
 async def test_stop_cancels_the_drive_the_voice_started(
     fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
 ) -> None:

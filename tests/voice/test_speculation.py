@@ -184,14 +184,18 @@ async def test_go_to_the_keeps_the_full_silence_but_is_still_prefilled() -> None
     assert allowed == [] and assistant.asked == ["go to the"] and len(prefills) == 1
 
 
-async def test_no_early_end_when_switched_off_no_prefill_for_a_stop_or_a_stop_check() -> None:
+async def test_no_early_end_when_switched_off_or_after_a_stop_no_prefill_for_a_stop() -> None:
     allowed, _, prefills = await follow("Go to the kitchen.", config=speculation(early_end=False,
                                                                                     speculative_prefill=False))
     assert (allowed, prefills) == ([], [])
-    allowed, _, prefills = await follow("Hey Jarvis, stop!")
-    assert allowed == [0.3] and prefills == []  # a stop goes to the stop tool, not the model
+    # a stop goes to the stop tool, not the model; it acts at the pause (`check_pause`), and what
+    # may follow it ("stop there, and then go back to your charger") is still heard
+    allowed, _, prefills = await follow("Hey Jarvis, stop there.")
+    assert allowed == [] and prefills == []
     allowed, _, prefills = await follow("stop", command=False)
-    assert allowed == [0.3] and prefills == []
+    assert allowed == [] and prefills == []
+    allowed, _, _ = await follow("Hey Jarvis, stop the call.")  # not a stop phrase: a complete request
+    assert allowed == [0.3]
 
 
 async def test_a_dropped_transcription_does_nothing() -> None:

@@ -104,7 +104,7 @@ class Commands:
         metrics.mark("endpoint", received + compute_s)
         metrics.speech_end = self.wall_time(last_word_end(utt.audio, utt.end))  # stream time -> clock
         turn = CommandTurn(self, self.floor.new_turn(), metrics)
-        self.floor.take(turn.id, turn.run(utt, verdict, speculation))
+        self.floor.take(turn.id, turn.run(utt, verdict, speculation), onset=utt.start)
 
 
 class CommandTurn:
@@ -180,7 +180,8 @@ class CommandTurn:
                     return
                 if is_stop_command(text):
                     c.assistant.confirmations.clear()  # a "stop" is no yes to "Shall I call Anna?"
-                    await c.stopper.stop(text, utt.end, self.id, metrics)
+                    if not await c.stopper.stop_once(utt.start, text, utt.end, metrics, self.id):
+                        await report_ignored(c.emit, c.stats, "stopped_at_pause", utt, raw)  # at a pause
                     return
                 if unsure is not None:
                     c.turns.rearm(utt.end)  # the person may say it again without the wake word

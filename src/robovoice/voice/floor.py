@@ -50,6 +50,7 @@ class Floor:
         self._group: asyncio.TaskGroup | None = None
         self._active: asyncio.Task[None] | None = None
         self._active_turn: int | None = None
+        self._active_onset: float | None = None  # the start of the utterance the active turn answers
         self._checks: set[asyncio.Task[None]] = set()
         self._next_turn = 0
         self.changed = asyncio.Event()
@@ -73,10 +74,12 @@ class Floor:
             raise RuntimeError("the voice pipeline is not running")
         return self._group.create_task(coro, name=name)
 
-    def take(self, turn: int, coro: Coroutine[Any, Any, None]) -> None:
-        """Give the floor to `turn` (the task running `coro`); whoever held it is cancelled."""
+    def take(self, turn: int, coro: Coroutine[Any, Any, None], onset: float | None = None) -> None:
+        """Give the floor to `turn` (the task running `coro`, answering the utterance that
+        started at `onset`); whoever held it is cancelled."""
         self.cancel_active()
         self._active_turn = turn
+        self._active_onset = onset
         self._active = self.spawn(coro, f"voice-turn-{turn}")
         self._active.add_done_callback(lambda _: self.changed.set())
 
@@ -100,10 +103,13 @@ class Floor:
         """No command turn and no stop check is running."""
         return not self.busy and not self._checks
 
-    def cancel_active(self) -> int | None:
-        """Cancel the task holding the floor (unless it is the caller); its turn number."""
+    def cancel_active(self, spare: float | None = None) -> int | None:
+        """Cancel the task holding the floor (unless it is the caller, or the turn for the
+        utterance that started at `spare`); its turn number."""
         task = self._active
         if task is None or task.done() or task is asyncio.current_task():
+            return None
+        if spare is not None and self._active_onset == spare:
             return None
         task.cancel()
         return self._active_turn

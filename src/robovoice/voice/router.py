@@ -10,7 +10,8 @@ answers at once) and hands anything slow to a task of the pipeline's TaskGroup (
 - speech starts or pauses: the motion watch is asked to refresh (for a stop without the
   wake word); at a pause of an utterance that will need it, transcription starts speculatively,
   and its transcript may shorten the end-of-turn silence and prefill the model
-  (`speculate.Speculator`);
+  (`speculate.Speculator`); while the robot moves, a stop said before a short utterance's
+  first pause acts there (`StopController.check_pause`), with or without the wake word;
 - an utterance ends: a command turn (`command.Commands`), a stop check
   (`stopping.StopController`), or ignored with a reason.
 """
@@ -119,7 +120,7 @@ class Router:
         woken = addressed and self.turns.pending_wake is not None
         command = addressed and not self.audio_native
         floor.spawn(self.speculator.follow(pause, transcription, woken=woken, command=command), "voice-speculation")
-        if not addressed:  # a short utterance while the robot moves: a stop acts at its first pause
+        if self.motion.moving and short:  # a stop acts at the first pause, addressed or not
             floor.check(self.stopper.check_pause(pause, transcription, received))
 
     async def _on_utterance(self, utt: HeardUtterance, received: float, compute_s: float) -> None:

@@ -4,6 +4,7 @@ pause is used for before the end of turn is decided.
 1. **A shorter silence.** When its words form a complete request (`completeness.is_complete`),
    the pause may end the utterance after `early_silence_s` (``[voice] early_end_silence_ms``)
    instead of the full end-of-turn silence (`HeardPause.end_early`; the endpointer voids it if speech resumes).
+   Never for a stop phrase: what may follow it is part of the command.
 2. **Speculative prefill.** For an addressed command, the assistant's first model step for those
    words (`Assistant.first_request`) is handed to a backend that can prefill
    (`LocalLlamaBackend.prefill`: the prompt goes into the model's cache, the tool call is
@@ -66,7 +67,9 @@ class Speculator:
         raw = transcription.result()[0].text
         text = strip_wake_words(raw, self.wake_phrase) if woken else raw.strip()
         self.stats.transcripts += 1
-        if self.config.early_end and is_complete(text):
+        # not after a stop: what may follow it ("stop there, and then go back to your charger")
+        # is part of the command; the stop itself acts at this pause (`StopController.check_pause`)
+        if self.config.early_end and is_complete(text) and not is_stop_command(text):
             pause.end_early(self.config.early_silence_s)
             self.stats.early_ends += 1
         if command and self.config.prefill and text and not is_stop_command(text):

@@ -3,9 +3,12 @@
 `StopController.check` is a stop check: a short utterance heard without the wake word while
 the robot moves, transcribed with the stop words as the hint and matched against the stop
 grammar (`stop.says_stop`). `check_pause` makes the same check on the speculative
-transcript at the utterance's first pause, so a stop acts without waiting for the end-of-turn
-silence (whatever follows a "stop" cannot make stopping wrong); a stop is made once per
-utterance, by whichever check gets there first. `StopController.stop` stops the robot: it cancels the turn
+transcript at the first pause of any short utterance while the robot moves, addressed or not,
+so a stop acts without waiting for the end-of-turn silence (whatever follows a "stop" cannot
+make stopping wrong); a stop is made once per utterance, by whichever check gets there first.
+For an addressed utterance the rest is not lost: "Hey Jarvis, stop there, and then go back to
+your charger" stops at the pause, and the whole transcript still goes to the model as a
+command turn, which this stop does not cancel. `StopController.stop` stops the robot: it cancels the turn
 holding the floor (and the action it started), drops queued speech, calls the tool with the
 ``stop`` role (`roles.VoiceRoles.stop`, from the robot's manifests) with a bounded wait, and
 says the outcome. It runs beside a turn, never inside the model's loop.
@@ -67,15 +70,20 @@ class StopController:
         self.wall_time: Callable[[float], float | None] = lambda _stream_s: None  # the pipeline's clock mapping
         self._stopped_for: float | None = None  # the onset of the utterance the last stop was made for
 
-    async def _stop_once(self, onset: float, text: str, at: float, metrics: TurnMetrics) -> bool:
+    async def stop_once(self, onset: float, text: str, at: float, metrics: TurnMetrics,
+                        turn: int | None = None) -> bool:
         """Stop for the utterance starting at `onset`, unless a stop was already made for it
-        (its first pause and its end may both find the stop); whether it stopped now."""
+        (its pauses and its end may each find the stop); whether it stopped now. `turn`: the
+        command turn it is made in (None: a turn of its own, whose answers are saved here)."""
         if self._stopped_for == onset:
             return False
         self._stopped_for = onset
+        if turn is not None:
+            await self.stop(text, at, turn, metrics, spare=onset)
+            return True
         turn = self.floor.new_turn()
         try:
-            await self.stop(text, at, turn, metrics)
+            await self.stop(text, at, turn, metrics, spare=onset)
         finally:
             self.answers.save(turn)
         return True
@@ -96,7 +104,7 @@ class StopController:
         metrics.stt_ms += took_ms
         metrics.mark("transcript")
         log.info("stop heard at the first pause (%.2f s), before the end of the utterance", pause.at)
-        await self._stop_once(pause.onset, text, pause.at, metrics)
+        await self.stop_once(pause.onset, text, pause.at, metrics)
 
     async def check(self, utt: HeardUtterance, received: float, speculation: Transcription | None) -> None:
         """Is this short utterance (no wake word, the robot moving) a stop? Then stop."""
@@ -112,14 +120,15 @@ class StopController:
         if utt.playback_share > 0.3 and self.own_words.contains(text):
             await report_ignored(self.emit, self.stats, "own_voice", utt, text)  # the robot heard itself
             return
-        if not await self._stop_once(utt.start, text, utt.end, metrics):
+        if not await self.stop_once(utt.start, text, utt.end, metrics):
             await report_ignored(self.emit, self.stats, "stopped_at_pause", utt, text)  # `check_pause` did
 
-    async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics) -> None:
-        """Stop the robot now: the stop tool, straight; the active turn cancelled; no model."""
+    async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics, spare: float | None = None) -> None:
+        """Stop the robot now: the stop tool, straight; the active turn cancelled (unless it
+        answers the utterance that started at `spare`: the one this stop was heard in); no model."""
         self.stats.stops += 1
         tool = self.roles.stop
-        cancelled = self.floor.cancel_active()
+        cancelled = self.floor.cancel_active(spare)
         self.speech.interrupt()
         await self.emit(StopHeard(text, at, cancelled, tool))
         called = ToolCalled(f"local-stop-{turn}", tool or "", {})
