@@ -177,7 +177,8 @@ def _turn(*calls: tuple[str, dict[str, object], str | None]) -> TurnActions:
     called = [ToolCalled(f"c{i}", name, dict(arguments)) for i, (name, arguments, _) in enumerate(calls)]
     returned = [ToolReturned(f"c{i}", name, "", error is not None, 1.0, error)
                 for i, (name, _, error) in enumerate(calls)]
-    return TurnActions(called, returned, {"get_robot_pose", "get_camera_image"})
+    return TurnActions(called, returned, {"get_robot_pose", "get_camera_image"},
+                       {"navigate_to", "return_to_dock", "set_projector_power", "start_video_call"})
 
 
 @pytest.mark.parametrize(("actions", "sentence", "false"), [
@@ -189,6 +190,11 @@ def _turn(*calls: tuple[str, dict[str, object], str | None]) -> TurnActions:
     (_turn(("set_projector_power", {"on": True}, None), ("start_video_call", {"contact": "Ben"}, "not_requested")),
      "The projector is now on.", False),
     (_turn(("navigate_to", {"target": "garage"}, "unknown_target")), "On my way to the garage.", True),
+    # names an action never called, after another ran (text v19: a drive, then "the projector is now on")
+    (_turn(("navigate_to", {"target": "bathroom"}, None)), "The projector is now on.", True),
+    (_turn(("navigate_to", {"target": "bathroom"}, None)), "I am now in the bathroom.", False),
+    (_turn(("navigate_to", {"target": "bathroom"}, None), ("set_projector_power", {"on": True}, None)),
+     "The projector is now on.", False),
     (_turn(("start_video_call", {"contact": "Ben"}, "not_requested")), "I won't call Ben.", False),  # a denial
     # every call refused: what the robot is doing was never looked up, and is a guess
     (_turn(("return_to_dock", {}, "not_requested")), "I am already at my charging dock.", True),

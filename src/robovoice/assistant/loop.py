@@ -152,6 +152,7 @@ class Assistant:
         if isinstance(user, str):  # nor the person's own words read back to them ("Dr. Weber told me I ought to…")
             model_only.add(user, short_copies=False)
         read_only = {s.name for s in tools if s.read_only}
+        actuators = {s.name for s in tools if not s.read_only}
         retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
         fitting: list[str] = []  # after a call that did not fit the request: the tools that do
 
@@ -169,7 +170,7 @@ class Assistant:
             lookup_only, fitting = False, []
             try:
                 text, requested, guessed = await model_step(self.backend, messages, specs, metrics, emit, model_only,
-                                                            TurnActions(calls, outcomes, read_only))
+                                                            TurnActions(calls, outcomes, read_only, actuators))
             except LLMError as exc:
                 log.warning("no LLM backend answered: %s", exc)
                 fell_back = True

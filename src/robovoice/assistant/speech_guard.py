@@ -206,12 +206,15 @@ class TurnActions:
     """What the turn's tool calls did so far, to tell a false claim from a true one. Before any
     tool ran, a claim may announce the call that follows it. After tools ran, a claim is false
     when no action succeeded ("The robot is now at the front door." after a camera look-up),
-    or when it names only actions that did not ("The video call with Ben has started." after
-    the call was refused and only the projector went on)."""
+    or when it names only actions that did not, or that were never called ("The video call with
+    Ben has started." after the call was refused and only the projector went on; "The projector
+    is now on." after only a drive: text v19's compound-2). `actuators`: the robot's tools that
+    act (not `read_only`)."""
 
     calls: Sequence[ToolCalled] = ()
     outcomes: Sequence[ToolReturned] = ()
     read_only: Collection[str] = ()
+    actuators: Collection[str] = ()
 
     def false_claim(self, sentence: str) -> str | None:
         """The words of `sentence` that claim an action this turn did not do, or that state what
@@ -227,8 +230,9 @@ class TurnActions:
         ran = [c for c, r in actions if r.error is None]
         if not ran:
             return claim
-        unrun = [c for c, r in actions if r.error is not None]
-        if any(names(sentence, c.name, c.arguments) for c in unrun) and not any(
+        unrun = [(c.name, c.arguments) for c, r in actions if r.error is not None]
+        unrun += [(tool, {}) for tool in self.actuators if tool not in {c.name for c in ran}]
+        if any(names(sentence, tool, arguments) for tool, arguments in unrun) and not any(
                 names(sentence, c.name, c.arguments) for c in ran):
             return claim
         return None
