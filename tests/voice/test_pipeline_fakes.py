@@ -95,6 +95,20 @@ async def test_a_near_miss_of_the_wake_phrase_calling_someone_else_does_nothing(
     assert not s.sim.state.moving and not s.log.of(VoiceTurnStarted)
 
 
+async def test_a_command_longer_than_the_wake_timeout_is_still_a_command(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    """Audio test v10: a 6.7 s command ended after its wake word's 6 s timeout, and was ignored."""
+    server.push(TextReply("All right."))
+    transcriber.text = "Hey Jarvis, go to the bedroom, no, sorry, the kitchen, and then ring Clara."
+    async with voice_session(fakes, backend, speed=2.0) as s:
+        await s.say(wake_command(6.5))
+        started = await s.log.wait_for(VoiceTurnStarted, timeout=20)
+        await s.settle()
+    assert started.text.startswith("go to the bedroom")
+    assert [e.reason for e in s.log.of(UtteranceIgnored) if e.start < started.audio_s] == []
+
+
 async def test_wake_word_alone_waits_for_the_command(
     fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
 ) -> None:

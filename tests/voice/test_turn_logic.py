@@ -49,6 +49,15 @@ def test_wake_word_then_pause_then_command_within_the_timeout() -> None:
     assert t.classify(18.0, 19.0, moving=False).action is Action.IGNORE
 
 
+def test_a_long_command_begun_within_the_timeout_keeps_its_wake_word() -> None:
+    t = TurnTaking(_turns(command_timeout_s=6.0))
+    t.wake(1.4)
+    assert not t.expire(7.5, speaking_since=0.3)  # "Hey Jarvis, …" still being said at 7.5 s
+    assert t.classify(0.3, 7.0, moving=False).action is Action.COMMAND
+    t.wake(10.0)
+    assert t.expire(17.0, speaking_since=16.5), "speech begun after the timeout is not the command"
+
+
 def test_short_speech_while_moving_is_checked_for_a_stop() -> None:
     t = TurnTaking(_turns(stop_max_s=2.5))
     assert t.classify(1.0, 1.6, moving=True).action is Action.STOP_CHECK

@@ -67,24 +67,27 @@ class Router:
         self.stats = stats
         self.emit = emit
         self.speculator = Speculator(speculation or config.speculation, commands.assistant, config.wake_phrase)
+        self._speaking_since: float | None = None  # the onset of the utterance in progress
 
     async def handle(self, heard: Heard, received: float) -> None:
         """What the listener heard in one chunk; `received`: when the chunk arrived."""
         self.stats.frontend_s += heard.compute_s
         self.stats.frontend_cpu_s += heard.cpu_s
         self.turns.playback(heard.playing or self.speech.busy, heard.now)
-        if self.turns.expire(heard.now):
+        if self.turns.expire(heard.now, self._speaking_since):
             log.info("wake word not followed by a command; listening again")
         for event in heard.events:
             match event:
                 case HeardWake():
                     await self._on_wake(event)
                 case HeardSpeechStart():
+                    self._speaking_since = event.at
                     self.motion.want()
                 case HeardPause():
                     self.motion.want()
                     self._on_pause(event, received)
                 case HeardUtterance():
+                    self._speaking_since = None
                     await self._on_utterance(event, received, heard.compute_s)
         self.floor.changed.set()
 

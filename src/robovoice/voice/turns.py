@@ -121,12 +121,19 @@ class TurnTaking:
             return True
         return self._playing_until is not None and start < self._playing_until + self.config.playback_tail_s
 
-    def expire(self, now: float) -> bool:
-        """Forget a wake word nobody followed up within the timeout; True if one expired."""
-        if self._wake_at is not None and now - self._wake_at > self.config.command_timeout_s:
-            self._wake_at = None
-            return True
-        return False
+    def expire(self, now: float, speaking_since: float | None = None) -> bool:
+        """Forget a wake word nobody followed up within the timeout; True if one expired.
+        `speaking_since`: the onset of the utterance still being said, if any. A command begun
+        within the timeout keeps its wake word however long it runs: audio test v10's "Hey
+        Jarvis, go to the bedroom, no, sorry, the kitchen, and then ring Clara." in babble was
+        one 6.7 s utterance, and its end came after the wake word had expired."""
+        wake = self._wake_at
+        if wake is None or now - wake <= self.config.command_timeout_s:
+            return False
+        if speaking_since is not None and speaking_since - wake <= self.config.command_timeout_s:
+            return False  # the command is still being said; its end decides (`classify`)
+        self._wake_at = None
+        return True
 
     def _wake_for(self, start: float, end: float) -> bool:
         # the wake word fell inside the utterance (or was confirmed just after it ended), or
