@@ -39,6 +39,12 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "I'd like the projector switched on, please.",
     "I only want to talk to Dr. Weber.",
     "I just want you in the bedroom.",
+    # fifteenth session (text v19): the object before the particle; Irish "would you ever … for me";
+    # "for when …" says what it is for, not when
+    "Stick the telly on for me, would you?",
+    "Would you ever close the curtains for me?",
+    "Would you ever drive to the garden, please?",
+    "Put the projector on ready for when my sister arrives.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -69,6 +75,10 @@ def test_requests_ask_for_action(text: str) -> None:
     ("They moved into the flat upstairs.", ClauseKind.STATEMENT),
     ("I just need a minute to find my glasses.", ClauseKind.STATEMENT),  # no "want": not a wish for the robot
     ("Could you ring the doctor in an emergency? I just want to know you can.", ClauseKind.ABILITY),
+    ("Would you ever drive into the garden?", ClauseKind.ABILITY),  # no "for me", no "please": a question
+    ("Is the telly on?", ClauseKind.QUESTION),  # an auxiliary is no imperative's verb
+    ("Was the heating off all night?", ClauseKind.QUESTION),
+    ("Ring the doctor when I fall over.", ClauseKind.ABILITY),  # a condition, not what it is for
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)
@@ -227,6 +237,12 @@ def test_a_tool_named_for_what_was_declined_is_refused() -> None:
     assert body is not None and body["details"]["reason"] == "negated"
     assert refusal(declined, NAV, {"target": "hallway"}) is None
     assert refusal(read_request("Don't turn the projector off, turn it on."), projector, {"on": True}) is None
+    # another value of the same tool, asked by its other name ("my son" is Ben in the description)
+    call = ToolSpec("start_video_call", "Call a contact: Anna (daughter), Ben (son), Clara (neighbour).")
+    instead = read_request("Don't put Clara on the video, get my son instead.")
+    assert refusal(instead, call, {"contact": "Ben"}) is None
+    assert refusal(instead, call, {"contact": "Clara"}) is not None
+    assert refusal(instead, call, {"contact": "Anna"}) is not None  # nobody asked for the daughter
 
 
 def test_an_answer_to_the_robots_question_is_a_request() -> None:

@@ -138,15 +138,17 @@ def _siblings(name: str, declared: Mapping[str, Sequence[str]]) -> list[Sequence
     return [phrases for tool, phrases in declared.items() if tool != name and subject & subject_words(tool)]
 
 
-def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[str]) -> bool:
+def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[str],
+                                  glossed: Collection[str] = ()) -> bool:
     """The tool's own name names a thing the user declined and no request mentions ("leave
     the projector alone" → set_projector_power), which its arguments (a yes/no) cannot show.
     A request that refers back ("don't switch it off, switch it on") may mean the same thing,
-    and one that names the call's arguments asks for it ("call Clara - no, ring Ben instead")."""
+    and one that names the call's arguments, or their other names, asks for it ("call Clara -
+    no, ring Ben instead"; "don't call the doctor, ring my daughter instead": Anna)."""
     requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
     if any(_BACK_REFERENCE.search(c.text) for c in requests):
         return False
-    if set(named) & {w for c in requests for w in words(c.text)}:
+    if (set(named) | set(glossed)) & {w for c in requests for w in words(c.text)}:
         return False
     return bool(subject_words(name) & intent.negated_words())
 
@@ -179,7 +181,7 @@ def refusal(
         glossed = _glossed(spec, arguments)  # the values' other names: "the loo" is the bathroom
         if named and set(named) <= intent.negated_words():
             why = ClauseKind.NEGATED.value
-        elif _names_only_what_was_declined(name, intent, named):
+        elif _names_only_what_was_declined(name, intent, named, glossed):
             why = ClauseKind.NEGATED.value  # "leave the projector alone, but come here": the projector
         elif named and intent.refers and not RELATIONS & usual(heard) and not named_in(
                 [*named, *glossed], heard):

@@ -35,9 +35,14 @@ def _asks_about_kinds(text: str) -> bool:
     return match is not None and not set(words(match.group(0))[3:]) & NOT_GENERIC
 
 
+# Irish English asks with "would you ever …": "would you ever put the kettle on for me?" is a
+# request when it says for whom or "please" ("would you ever go out on the balcony?" is not)
+_WOULD_YOU_EVER = re.compile(r"^would you ever (?=.*\b(?:for (?:me|us)|please)\b)", re.IGNORECASE)
+
+
 def asks_ability(text: str) -> bool:
     """The clause (fillers stripped) asks whether the robot can do something."""
-    lowered = text.lower()
+    lowered = _WOULD_YOU_EVER.sub("would you ", text.lower())
     return bool(_ABILITY.search(lowered) or (_CAN_GENERIC.search(lowered) and not _NAMED.search(text))
                 or _asks_about_kinds(lowered))
 
@@ -68,6 +73,8 @@ _WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sur
 # you're ready when I come in" is to be done now (an "if" still puts it off: "ring the doctor so
 # I can talk to her if I fall")
 _PURPOSE = re.compile(r"\b(?:so(?: that)? (?:you|i|we|he|she|they|it)|in order to|so as to)\b", re.IGNORECASE)
+# … and so does one right after "for": "put the projector on for when I get back" is done now
+_FOR = re.compile(r"\bfor$", re.IGNORECASE)
 _EMERGENCY = re.compile(r"\b(?:in (?:an|case of(?: an)?) emergency|if anything (?:happens|happened|goes wrong))\b",
                         re.IGNORECASE)
 # Said beside a "can you …?", these make it a question about ability: "Just out of interest, can
@@ -89,6 +96,7 @@ def conditional(request: str) -> bool:
     late = _LATE_CONDITION.search(request)
     if late is None or _WHETHER.search(request[:late.start()]):
         return False
-    if late.group(1).lower().startswith("when") and _PURPOSE.search(request[:late.start()]):
+    before = request[:late.start()]
+    if late.group(1).lower().startswith("when") and (_PURPOSE.search(before) or _FOR.search(before)):
         return False
     return not (COURTESY.match(late.group(1)) or ON_ARRIVAL.match(late.group(1)) or SEQUENCE.match(late.group(1)))

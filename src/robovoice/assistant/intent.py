@@ -99,10 +99,12 @@ _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNOREC
 # in", "crank up the projector"): a bare first word, then "yourself", a way to a place, or up/on/
 # off a thing. Not a pronoun, a past tense, a gerund or a plural ("went over to", "lights on the").
 _SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|over|along|across|back|down|round|around|through|out) ){0,2}"
-                    r"(?:to|into|towards?) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) )")
+                    r"(?:to|into|towards?) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) "
+                    r"|(?:the|my|your) \w+ (?:on|off)\b)")  # "whack the projector on"
 _NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
                          r"our|their|someone|somebody|nobody|everyone|went|came|ran|drove|got|took|rode|fell|sat|"
-                         r"stood|left|\w+(?:ed|ing|[^s]s))$")
+                         r"stood|left|is|are|was|were|am|be|been|has|have|had|do|does|did|can|could|would|will|"
+                         r"should|shall|may|might|must|\w+(?:ed|ing|[^s]s))$")
 
 
 # An utterance whose last request ends on a word that needs one after it was cut off
@@ -166,8 +168,11 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     for part in split_clauses(text):
-        if TAG.match(part.strip()):
-            continue  # "…, would you?", "…, dear": part of the clause before it
+        if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
+            if clauses and clauses[-1].kind is ClauseKind.ABILITY and \
+                    classify(f"{clauses[-1].text} {part.strip()}") is ClauseKind.REQUEST:
+                clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "would you ever …, please?"
+            continue
         bare = FILLER.sub("", part.strip()).strip()
         kind = classify(part)
         if (after := _AFTER.match(bare)) is not None:
