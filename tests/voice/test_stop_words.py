@@ -29,7 +29,7 @@ def test_stop_my_something_else_is_not_a_stop(text: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["Please stop the robot.", "Stop the robot now!", "Stop the robot, please.",
-                                  "Okay, stop the robot right now."])
+                                  "Okay, stop the robot right now.", "Whoa whoa stop!", "Woah, hold it right there!"])
 def test_a_stop_phrase_with_fillers_around_it_is_a_stop(text: str) -> None:
     # "robot" is a filler too: stripping it first used to leave "stop the", which is no stop
     assert is_stop_command(text)

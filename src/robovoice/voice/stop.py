@@ -22,7 +22,7 @@ STOP_PHRASES: Final = frozenset({
 # "stop", up to three short words, "robot" is a stop ("stop the robot" and "stop robot" too)
 _STOP_THE_ROBOT: Final = re.compile(r"(?:stop|halt)(?: [a-z]{1,4}){0,3} robot")
 _FILLERS: Final = ("please", "right now", "now", "immediately", "okay", "ok", "hey", "jarvis", "robot",
-                   "oh", "hey robot", "you")  # fmt: skip
+                   "oh", "hey robot", "you", "whoa", "woah", "wow")  # fmt: skip
 _FILLER_WORDS: Final = tuple(f.split() for f in _FILLERS)
 _WORDS: Final = re.compile(r"[a-z']+")
 
