@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import os
+import re
 import sys
 
 from robovoice.llm.fake_server import FakeOpenAIServer, Quirks, ScriptedCall, ScriptedReply, TextReply, ToolCallReply
@@ -40,7 +41,10 @@ async def test_chat_against_llama_cpp_python_chatml_function_calling_quirks() ->
     assert code == 0, err
     assert "→ navigate_to(target='kitchen')" in out and '"arrived": "kitchen"' in out
     assert "→ get_battery_state()" in out and "← get_battery_state ok" in out
-    assert robot_lines(out) == ["robot> I am at the kitchen now.", "robot> My battery is at 80 percent."]
+    # the figure is the battery's own (the drive drains it: 80 or 81 % by the machine's speed)
+    arrived, battery = robot_lines(out)
+    assert arrived == "robot> I am at the kitchen now."
+    assert re.fullmatch(r"robot> My battery is at 8\d percent\.", battery), battery
     assert "functions." not in out and "Traceback" not in err
     assert [r.body["stream"] for r in server.requests] == [True, False, False, False]
 

@@ -201,7 +201,6 @@ async def test_what_follows_an_addressed_stop_still_reaches_the_model(
     assert not finished.cancelled and finished.result is not None
     assert [c.name for c in finished.result.calls] == ["return_to_dock"]
     assert server.requests and any(m.get("content") == started.text for m in server.requests[0].messages)
-    assert not [e for e in s.log.of(UtteranceIgnored) if e.reason == "no_wake_word"]
 
 
 async def test_stop_cancels_the_drive_the_voice_started(
