@@ -139,7 +139,7 @@ def _siblings(name: str, declared: Mapping[str, Sequence[str]]) -> list[Sequence
 
 
 def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[str],
-                                  glossed: Collection[str] = ()) -> bool:
+                                  glossed: Collection[str]) -> bool:
     """The tool's own name names a thing the user declined and no request mentions ("leave
     the projector alone" → set_projector_power), which its arguments (a yes/no) cannot show.
     A request that refers back ("don't switch it off, switch it on") may mean the same thing,

@@ -231,7 +231,8 @@ class TurnActions:
         if not ran:
             return claim
         unrun = [(c.name, c.arguments) for c, r in actions if r.error is not None]
-        unrun += [(tool, {}) for tool in self.actuators if tool not in {c.name for c in ran}]
+        ran_names = {c.name for c in ran}
+        unrun += [(tool, {}) for tool in self.actuators if tool not in ran_names]
         if any(names(sentence, tool, arguments) for tool, arguments in unrun) and not any(
                 names(sentence, c.name, c.arguments) for c in ran):
             return claim

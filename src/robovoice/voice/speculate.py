@@ -69,10 +69,11 @@ class Speculator:
         self.stats.transcripts += 1
         # not after a stop: what may follow it ("stop there, and then go back to your charger")
         # is part of the command; the stop itself acts at this pause (`StopController.check_pause`)
-        if self.config.early_end and is_complete(text) and not is_stop_command(text):
+        stop = is_stop_command(text)
+        if self.config.early_end and is_complete(text) and not stop:
             pause.end_early(self.config.early_silence_s)
             self.stats.early_ends += 1
-        if command and self.config.prefill and text and not is_stop_command(text):
+        if command and self.config.prefill and text and not stop:
             await self._prefill(text)
 
     async def _prefill(self, text: str) -> None:
