@@ -1,9 +1,10 @@
 """The local "stop" keyword: recognised from a transcript without any LLM (DESIGN.md §8).
 
 A transcript is a stop command when, after removing punctuation, the wake phrase and a few
-fillers ("please", "now", "robot", "okay", ...), nothing is left but a stop phrase ("stop",
-"stop the robot", "halt", "stop moving", "freeze", "hold it right there", repeated or not;
-"stop my robot" or "stop one of the robot", as Whisper tiny.en hears "Stop the robot!").
+fillers ("please", "now", "robot", "okay", ...), nothing is left but stop phrases ("stop",
+"stop the robot", "halt", "stop moving", "freeze", "hold it right there", "wait, stay where you
+are", one or several; "stop my robot" or "stop one of the robot", as Whisper tiny.en hears
+"Stop the robot!").
 Anything more ("stop the call", "don't stop", "stop at the kitchen") is not: that is for the model.
 """
 
@@ -15,7 +16,8 @@ from typing import Final
 STOP_PHRASES: Final = frozenset({
     "stop", "halt", "freeze", "stop moving", "stop driving", "stop it",
     "stop right there", "stop there", "stop now", "stop right now", "emergency stop", "stop stop", "hold it",
-    "hold it right there",
+    "hold it right there", "wait", "wait there", "hold on", "stay there", "stay put", "stay where you are",
+    "stay right where you are", "stay right there", "don't move",
 })  # fmt: skip
 # With the robot's own voice over it, Whisper tiny.en garbles the little word of "stop the
 # robot" ("Stop my robot!", "Stop one robot!", "Stop when robot!", "Stop one of the robot!"):
@@ -33,30 +35,22 @@ def normalise(text: str) -> str:
 
 def is_stop_command(text: str) -> bool:
     """True when `text` (a transcript) is nothing but a stop command."""
-    words = normalise(text)
-    if not words:
-        return False
-    if words in STOP_PHRASES:
-        return True
-    tokens = words.split()
-    # a stop phrase with nothing but fillers around it ("hey jarvis stop please", "okay stop the
-    # robot right now"); "robot" is a filler but also part of "stop the robot", so every span is tried
-    for i in range(len(tokens)):
-        for j in range(i + 1, len(tokens) + 1):
-            span = " ".join(tokens[i:j])
-            stop_span = span in STOP_PHRASES or _STOP_THE_ROBOT.fullmatch(span)
-            if stop_span and _fillers_only(tokens[:i]) and _fillers_only(tokens[j:]):
-                return True
-    return all(t in ("stop", "halt") for t in tokens)
-
-
-def _fillers_only(tokens: list[str]) -> bool:
-    """Whether `tokens` is a run of fillers (empty included)."""
-    ends = {0}  # positions reachable by whole fillers from the start
+    tokens = normalise(text).split()
+    # each position reachable from the start by whole fillers and stop phrases, and whether a stop
+    # phrase was among them; "robot" is a filler but also part of "stop the robot", so every span
+    # is tried ("okay stop the robot right now", "whoa whoa wait stay right where you are")
+    reach: dict[int, bool] = {0: False}
     for k in range(len(tokens)):
-        if k in ends:
-            ends.update(k + len(f) for f in _FILLER_WORDS if tokens[k : k + len(f)] == f)
-    return len(tokens) in ends
+        if k not in reach:
+            continue
+        for f in _FILLER_WORDS:
+            if tokens[k : k + len(f)] == f:
+                reach[k + len(f)] = reach.get(k + len(f), False) or reach[k]
+        for j in range(k + 1, len(tokens) + 1):
+            span = " ".join(tokens[k:j])
+            if span in STOP_PHRASES or _STOP_THE_ROBOT.fullmatch(span):
+                reach[j] = True
+    return reach.get(len(tokens), False)
 
 
 _CLAUSE: Final = re.compile(r"[,.;:!?]+")
