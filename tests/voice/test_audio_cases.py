@@ -42,9 +42,9 @@ def test_the_audio_set_is_complete() -> None:
         with wave.open(str(case.audio)) as wf:
             assert (wf.getnchannels(), wf.getsampwidth(), wf.getframerate()) == (1, 2, 16000), case.id
             seconds = wf.getnframes() / wf.getframerate()
-        assert 1.5 < seconds < 6.0, case.id
+        assert 1.5 < seconds < 7.0, case.id  # a two-step request runs to about 6.5 s
         total += Path(case.audio).stat().st_size
-    assert total < 8_000_000
+    assert total < 9_000_000
 
 
 @pytest.mark.integration
