@@ -172,6 +172,9 @@ async def test_a_stop_acts_at_its_first_pause_without_waiting_for_the_end_of_the
     [said] = [e for e in s.log.of(UtteranceIgnored) if e.start < heard[0].at]
     assert said.reason in ("no_wake_word", "stopped_at_pause") and heard[0].at < said.end - 0.9, (heard, said)
     assert [e.text for e in s.log.of(SentenceSpoken) if e.kind == "stop"] == ["Stopped."]
+    # the robot stopped at the pause but said so only once the person had finished
+    [spoken] = [i for i, e in enumerate(s.log.events) if isinstance(e, SentenceSpoken) and e.kind == "stop"]
+    assert s.log.events.index(said) < spoken
 
 
 async def test_what_follows_an_addressed_stop_still_reaches_the_model(
@@ -200,6 +203,9 @@ async def test_what_follows_an_addressed_stop_still_reaches_the_model(
     assert heard.cancelled_turn is None  # the stop came before the command turn, and spared it
     assert not finished.cancelled and finished.result is not None
     assert [c.name for c in finished.result.calls] == ["return_to_dock"]
+    # "Stopped." waited for the end of the person's sentence, so it was not said over the rest
+    [spoken] = [i for i, e in enumerate(s.log.events) if isinstance(e, SentenceSpoken) and e.kind == "stop"]
+    assert s.log.events.index(started) < spoken
     assert server.requests and any(m.get("content") == started.text for m in server.requests[0].messages)
 
 

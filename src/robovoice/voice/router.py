@@ -127,6 +127,7 @@ class Router:
             floor.check(self.stopper.check_pause(pause, transcription, received))
 
     async def _on_utterance(self, utt: HeardUtterance, received: float, compute_s: float) -> None:
+        self.stopper.utterance_ended(utt.start)  # a stop made at its pause may say so now
         short = utt.duration_s <= self.config.turns.stop_max_s
         moving = short and not self.turns.addressed(utt.start, utt.end) and self.motion.moving
         verdict = self.turns.classify(utt.start, utt.end, moving=moving)

@@ -8,7 +8,9 @@ so a stop acts without waiting for the end-of-turn silence (whatever follows a "
 make stopping wrong); a stop is made once per utterance, by whichever check gets there first.
 For an addressed utterance the rest is not lost: "Hey Jarvis, stop there, and then go back to
 your charger" stops at the pause, and the whole transcript still goes to the model as a
-command turn, which this stop does not cancel. `StopController.stop` stops the robot: it cancels the turn
+command turn, which this stop does not cancel; the robot says "Stopped." only once the person
+has finished that utterance (`utterance_ended`), so it never talks over them and its own
+words do not end up in their transcript. `StopController.stop` stops the robot: it cancels the turn
 holding the floor (and the action it started), drops queued speech, calls the tool with the
 ``stop`` role (`roles.VoiceRoles.stop`, from the robot's manifests) with a bounded wait, and
 says the outcome. It runs beside a turn, never inside the model's loop.
@@ -17,6 +19,7 @@ says the outcome. It runs beside a turn, never inside the model's loop.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 import time
 from collections.abc import Callable
@@ -69,12 +72,28 @@ class StopController:
         self.roles = VoiceRoles()
         self.wall_time: Callable[[float], float | None] = lambda _stream_s: None  # the pipeline's clock mapping
         self._stopped_for: float | None = None  # the onset of the utterance the last stop was made for
+        self._ended: float | None = None  # the onset of the last utterance the listener closed
+        self._end = asyncio.Event()
+
+    def utterance_ended(self, onset: float) -> None:
+        """The router: the utterance that started at `onset` is over."""
+        self._ended = onset
+        self._end.set()
+
+    async def _after_utterance(self, onset: float) -> None:
+        """Until the utterance that started at `onset` is over (at most the longest utterance)."""
+        with contextlib.suppress(TimeoutError):
+            async with asyncio.timeout(self.config.endpointer.max_utterance_s):
+                while self._ended is None or self._ended < onset:
+                    self._end.clear()
+                    await self._end.wait()
 
     async def stop_once(self, onset: float, text: str, at: float, metrics: TurnMetrics,
-                        turn: int | None = None) -> bool:
+                        turn: int | None = None, *, at_pause: bool = False) -> bool:
         """Stop for the utterance starting at `onset`, unless a stop was already made for it
         (its pauses and its end may each find the stop); whether it stopped now. `turn`: the
-        command turn it is made in (None: a turn of its own, whose answers are saved here)."""
+        command turn it is made in (None: a turn of its own, whose answers are saved here);
+        `at_pause`: the utterance may still go on (its reply waits for its end)."""
         if self._stopped_for == onset:
             return False
         self._stopped_for = onset
@@ -83,7 +102,7 @@ class StopController:
             return True
         turn = self.floor.new_turn()
         try:
-            await self.stop(text, at, turn, metrics, spare=onset)
+            await self.stop(text, at, turn, metrics, spare=onset, at_pause=at_pause)
         finally:
             self.answers.save(turn)
         return True
@@ -104,7 +123,7 @@ class StopController:
         metrics.stt_ms += took_ms
         metrics.mark("transcript")
         log.info("stop heard at the first pause (%.2f s), before the end of the utterance", pause.at)
-        await self.stop_once(pause.onset, text, pause.at, metrics)
+        await self.stop_once(pause.onset, text, pause.at, metrics, at_pause=True)
 
     async def check(self, utt: HeardUtterance, received: float, speculation: Transcription | None) -> None:
         """Is this short utterance (no wake word, the robot moving) a stop? Then stop."""
@@ -123,9 +142,11 @@ class StopController:
         if not await self.stop_once(utt.start, text, utt.end, metrics):
             await report_ignored(self.emit, self.stats, "stopped_at_pause", utt, text)  # `check_pause` did
 
-    async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics, spare: float | None = None) -> None:
+    async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics, spare: float | None = None,
+                   at_pause: bool = False) -> None:
         """Stop the robot now: the stop tool, straight; the active turn cancelled (unless it
-        answers the utterance that started at `spare`: the one this stop was heard in); no model."""
+        answers the utterance that started at `spare`: the one this stop was heard in); no model.
+        `at_pause`: the outcome is said once that utterance is over."""
         self.stats.stops += 1
         tool = self.roles.stop
         cancelled = self.floor.cancel_active(spare)
@@ -156,6 +177,8 @@ class StopController:
             reply = fill(phrases.success if phrases else None, fields) or self.config.speech.stop_reply
         else:
             reply = fill(phrases.failure if phrases else None, fields) or self.config.speech.stop_failed_reply
+        if at_pause and spare is not None:
+            await self._after_utterance(spare)
         self.speech.say(reply, turn=turn, kind="stop", metrics=metrics)
         error = None if ok else (fields.get("error") if isinstance(fields.get("error"), str) else "stop_failed")
         returned = ToolReturned(called.call_id, called.name, detail, not ok, took_ms, error,
