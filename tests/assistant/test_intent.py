@@ -45,6 +45,10 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "Would you ever close the curtains for me?",
     "Would you ever drive to the garden, please?",
     "Put the projector on ready for when my sister arrives.",
+    # sixteenth session (text v18): advice to the robot asks
+    "You ought to close the curtains, it's getting dark.",
+    "Perhaps you'd better drive to the garden.",
+    "I reckon you should ring the plumber.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -79,6 +83,9 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Is the telly on?", ClauseKind.QUESTION),  # an auxiliary is no imperative's verb
     ("Was the heating off all night?", ClauseKind.QUESTION),
     ("Ring the doctor when I fall over.", ClauseKind.ABILITY),  # a condition, not what it is for
+    ("You should've rung the plumber yesterday.", ClauseKind.STATEMENT),  # advice too late is talk
+    ("You must be worn out from the garden.", ClauseKind.STATEMENT),
+    ("My sister says you ought to visit the garden.", ClauseKind.STATEMENT),  # someone else's advice, told
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)

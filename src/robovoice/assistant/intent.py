@@ -69,7 +69,11 @@ _NEGATION = re.compile(
 _MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
-    r"^time to\b|^you (?:can|could|may|should|need to|must)\b|^off you go\b|^go and\b|"
+    r"^time to\b|^off you go\b|^go and\b|"
+    # advice to the robot is a request, not a past it missed ("you ought to charge up", "I think
+    # you'd better ring Clara"; not "you should have seen it", "you must be tired")
+    r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
+    r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
     r"^i(?:'d| would) like (?:you|to|the|my|a|an|some|it)\b|^i (?:want|need|wish)\b|^i(?:'d| would) love\b|"
     r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
     r"^(?:all|what|the one thing) i(?:'d| would)? (?:really )?(?:want|need|like) (?:from you )?is\b|"
