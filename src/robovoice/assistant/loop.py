@@ -45,6 +45,7 @@ from robovoice.assistant.turn_rules import (
     done,
     is_repeat,
     offered,
+    unacted,
     wordless_reply,
 )
 from robovoice.errors import LLMError
@@ -154,6 +155,7 @@ class Assistant:
         read_only = {s.name for s in tools if s.read_only}
         actuators = {s.name for s in tools if not s.read_only}
         retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
+        nudged = False  # a request only looked up was asked for once more (`unacted`)
         fitting: list[str] = []  # after a call that did not fit the request: the tools that do
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
@@ -221,6 +223,10 @@ class Assistant:
                     messages.append(next_step())
                     continue
             if not requested:
+                if not nudged and step < max_steps - 2 and (left := unacted(asked, lookups, tools, calls)):
+                    nudged = True  # answered in words alone, though a place or a person was asked for
+                    messages.append(ChatMessage("user", step_hint(left, False, first=False)))
+                    continue
                 break
             ran: list[tuple[ToolCalled, ToolReturned]] = []
             for request in requested:
@@ -242,6 +248,8 @@ class Assistant:
                 if isinstance(hint, str):
                     model_only.add(hint)
             more = asked_left(asked, outcomes, passed) and step < max_steps - 2
+            left = None if more or nudged or step >= max_steps - 2 else unacted(asked, lookups, tools, calls)
+            more = more or left is not None
             # the tool's own phrase answers this step when it fills and nothing was asked it
             # does not answer: no model step just to word it (assistant/phrase.py)
             # (a look-up's phrase too when more is asked: the turn goes on, and the person hears
@@ -255,7 +263,10 @@ class Assistant:
                 if not more:
                     metrics.mark("phrase_answer")
                     break
-            if more:
+            if left is not None:  # only looked up: the request itself is asked for once more
+                nudged = True
+                messages.append(ChatMessage("user", step_hint(left, False, first=False)))
+            elif more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next
                 messages.append(next_step())

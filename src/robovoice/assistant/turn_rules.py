@@ -1,5 +1,5 @@
 """The tool loop's rules for the steps of one turn (`loop.Assistant.turn`): which calls ran,
-what is still to do in a compound request, what a step offers, a repeated look-up, and the
+what is still to do in a compound request, a request only looked up, what a step offers, a repeated look-up, and the
 words of a turn the model ended without any, and the history kept between turns."""
 
 from __future__ import annotations
@@ -7,8 +7,10 @@ from __future__ import annotations
 import json
 from collections.abc import Collection, Mapping, Sequence
 
-from robovoice.assistant.events import ToolReturned
+from robovoice.assistant.events import ToolCalled, ToolReturned
+from robovoice.assistant.fit import listed, unsaid
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
+from robovoice.assistant.lexicon import words
 from robovoice.assistant.reading import ClauseKind
 from robovoice.llm.base import ChatMessage, ToolCallRequested, ToolSpec
 
@@ -42,6 +44,24 @@ def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: i
     if len(asked) == 1 and len(outcomes) == 1 and not passed and _reason(outcomes[0]) == ClauseKind.NEGATED.value:
         return True
     return len(asked) > 1 and done(outcomes, passed) < len(asked)
+
+
+def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolSpec],
+            calls: Sequence[ToolCalled]) -> str | None:
+    """The first thing asked that names a value an action lists ("wait for me in the hallway":
+    a place `navigate_to` takes), when the turn has called no action at all, only look-ups or
+    nothing: the small model looks up its pose or the camera and answers as if it had gone
+    ("I'm waiting in the hallway."). That request is asked for once more; the check before
+    acting still decides whatever it calls then. A look-up ("tell me about the kitchen") is not."""
+    actions = [s for s in specs if not s.read_only]
+    if any(c.name in {s.name for s in actions} for c in calls):
+        return None
+    for step, lookup in zip(asked, lookups, strict=True):
+        heard = words(step)
+        if not lookup and any(not unsaid(s.description, s.parameters, {arg: value}, heard)
+                              for s in actions for arg, values in listed(s.parameters).items() for value in values):
+            return step
+    return None
 
 
 def _refusal_details(outcome: ToolReturned) -> dict[str, object]:
