@@ -223,10 +223,6 @@ class Assistant:
                     messages.append(next_step())
                     continue
             if not requested:
-                if not nudged and step < max_steps - 2 and (left := unacted(asked, lookups, tools, calls)):
-                    nudged = True  # answered in words alone, though a place or a person was asked for
-                    messages.append(ChatMessage("user", step_hint(left, False, first=False)))
-                    continue
                 break
             ran: list[tuple[ToolCalled, ToolReturned]] = []
             for request in requested:
@@ -248,6 +244,8 @@ class Assistant:
                 if isinstance(hint, str):
                     model_only.add(hint)
             more = asked_left(asked, outcomes, passed) and step < max_steps - 2
+            # only looked up, though a place or a person an action lists was asked for (an answer
+            # in words alone is not asked again: there a misread question would be made an action)
             left = None if more or nudged or step >= max_steps - 2 else unacted(asked, lookups, tools, calls)
             more = more or left is not None
             # the tool's own phrase answers this step when it fills and nothing was asked it

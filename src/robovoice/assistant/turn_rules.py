@@ -49,12 +49,12 @@ def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: i
 def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolSpec],
             calls: Sequence[ToolCalled]) -> str | None:
     """The first thing asked that names a value an action lists ("wait for me in the hallway":
-    a place `navigate_to` takes), when the turn has called no action at all, only look-ups or
-    nothing: the small model looks up its pose or the camera and answers as if it had gone
-    ("I'm waiting in the hallway."). That request is asked for once more; the check before
-    acting still decides whatever it calls then. A look-up ("tell me about the kitchen") is not."""
+    a place `navigate_to` takes), when the turn has called look-ups and no action: the small
+    model looks up its pose or the camera and answers as if it had gone ("I'm waiting in the
+    hallway."). That request is asked for once more; the check before acting still decides
+    whatever it calls then. A look-up asked for ("tell me about the kitchen") is not."""
     actions = [s for s in specs if not s.read_only]
-    if any(c.name in {s.name for s in actions} for c in calls):
+    if not calls or any(c.name in {s.name for s in actions} for c in calls):
         return None
     for step, lookup in zip(asked, lookups, strict=True):
         heard = words(step)
