@@ -122,8 +122,10 @@ async def bench_local(
     """
     own = backend is None
     # tool_bias is calibrated for the assistant's own prompt (docs/llm.md); this bench's short
-    # prompt would turn its small-talk turn into a tool call, so it measures the model untilted
-    llm = backend if backend is not None else LocalLlamaBackend(deadlines=BENCH_DEADLINES, tool_bias=0.0)
+    # prompt would turn its small-talk turn into a tool call, so it measures the model untilted;
+    # the warm-up is timed evaluating the prefix, not reading a state kept from an earlier run
+    llm = backend if backend is not None else LocalLlamaBackend(deadlines=BENCH_DEADLINES, tool_bias=0.0,
+                                                                keep_prompt_state=False)
     try:
         load_s = await llm.load()
         await llm.reset_cache()

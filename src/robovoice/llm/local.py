@@ -37,6 +37,7 @@ from typing import Any
 
 from robovoice.errors import LLMError, MissingDependencyError
 from robovoice.llm import chatml_tools as fmt
+from robovoice.llm import prompt_state
 from robovoice.llm.base import (
     LOCAL_DEADLINES,
     ChatMessage,
@@ -54,7 +55,7 @@ from robovoice.llm.local_head import TOOL_BIAS, HeadDecision, HeadTilt, bias_for
 from robovoice.llm.local_speculation import Speculation, SpeculativePrefill
 from robovoice.llm.local_turn import Turn, TurnStats
 from robovoice.llm.model_store import INSTALL_HINT as MODEL_INSTALL_HINT
-from robovoice.llm.model_store import default_model_ready, resolve_model_path
+from robovoice.llm.model_store import default_cache_dir, default_model_ready, resolve_model_path
 from robovoice.llm.text_calls import TextCallParser
 
 log = logging.getLogger(__name__)
@@ -103,6 +104,8 @@ class LocalLlamaBackend(SpeculativePrefill):
         # on the evaluation set (docs/llm.md); 0 = off; negative values favour answering.
         tool_bias: float = TOOL_BIAS,
         cache_dir: Path | None = None,
+        # the warmed-up prefix kept on disk for the next start (llm/prompt_state.py)
+        keep_prompt_state: bool = True,
     ) -> None:
         if not llama_cpp_available():
             raise MissingDependencyError("the embedded local LLM (llama-cpp-python)", INSTALL_HINT)
@@ -118,6 +121,7 @@ class LocalLlamaBackend(SpeculativePrefill):
         self.max_calls_per_turn = max_calls_per_turn
         self.tool_bias = tool_bias
         self.cache_dir = cache_dir
+        self.keep_prompt_state = keep_prompt_state
         self.load_s: float | None = None
         self.last_turn = TurnStats()
         self._llama: Any = None
@@ -336,11 +340,20 @@ class LocalLlamaBackend(SpeculativePrefill):
         return self.load_s or 0.0
 
     def _warm_up_blocking(self, prefix: str) -> TurnStats:
-        self._load_blocking()
+        llama, llama_cpp = self._load_blocking(), _import_llama()
         turn = Turn(threading.Event())
-        p_eval_ms, _ = self._perf()
-        self._complete(turn, prefix, stream=False, max_tokens=1)
-        turn.stats.prompt_eval_ms = self._perf()[0] - p_eval_ms
+        tokens = llama.tokenize(prefix.encode("utf-8"), add_bos=False, special=True)
+        kept = (prompt_state.state_path(self.cache_dir or default_cache_dir(), llama_cpp, Path(llama.model_path),
+                                        self.n_ctx, tokens) if self.keep_prompt_state else None)
+        if kept is not None and prompt_state.load(llama, llama_cpp, kept, tokens):
+            turn.stats.prompt_tokens = turn.stats.cached_prompt_tokens = len(tokens)
+            turn.stats.from_disk = True
+        else:
+            p_eval_ms, _ = self._perf()
+            self._complete(turn, prefix, stream=False, max_tokens=1)
+            turn.stats.prompt_eval_ms = self._perf()[0] - p_eval_ms
+            if kept is not None:
+                prompt_state.save(llama, llama_cpp, kept, tokens)
         turn.stats.total_s = time.perf_counter() - turn.start
         return turn.stats
 

@@ -24,6 +24,8 @@ class TurnStats:
     # The turn's first step was decoded speculatively, before the turn was asked for (its
     # events were replayed; `LocalLlamaBackend.prefill`).
     speculative: bool = False
+    # A warm-up whose prefix state was read from disk, not evaluated (llm/prompt_state.py).
+    from_disk: bool = False
 
 
 @dataclass(slots=True)
