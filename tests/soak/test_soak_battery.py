@@ -10,6 +10,7 @@ import pytest
 
 from robovoice.assistant.connect import connect_robot
 from robovoice.assistant.loop import Assistant
+from robovoice.assistant.prompt import SYSTEM_PROMPT
 from robovoice.config import RobotConfig
 from robovoice.llm.local import LocalLlamaBackend
 from robovoice.middleware.base import Feedback
@@ -35,6 +36,7 @@ async def test_a_drive_refused_for_a_low_battery_is_explained() -> None:
             await sim.middleware.run_action("navigation", "drive_to", {"target": "bedroom"},
                                              on_feedback=_ignore, timeout=60.0)
             await sim.middleware.call("base", "set_battery_percent", {"percent": 4.5}, timeout=5.0)
+            await backend.warm_up(SYSTEM_PROMPT, await link.tools.specs())  # as `robovoice chat` starts
             result = await Assistant(backend, link.tools).turn("Go to the kitchen.")
             state = sim.state
     finally:
