@@ -227,6 +227,7 @@ async def test_a_request_for_a_place_only_looked_up_is_asked_for_once_more() -> 
         "Wait for me in the bedroom, would you?")
     assert [c.name for c in result.calls] == ["get_robot_pose", "navigate_to"]
     assert server.requests[1].last_user_text == hint
+    assert server.requests[1].tool_names == ["navigate_to"]  # offered alone: no second look-up
     result, server = await scripted_turn([TextReply("I'll wait there.")], "Wait for me in the bedroom, would you?")
     assert not result.calls and len(server.requests) == 1
     result, server = await scripted_turn(

@@ -157,6 +157,7 @@ class Assistant:
         retried = lookup_only = False  # asked again after a guessed figure / this step offers only look-ups
         nudged = False  # a request only looked up was asked for once more (`unacted`)
         fitting: list[str] = []  # after a call that did not fit the request: the tools that do
+        only: list[str] = []  # a request only looked up, asked again: the actions it names, alone
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
             due = done(outcomes, passed)
@@ -168,8 +169,8 @@ class Assistant:
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
             lookup = asked_left(asked, outcomes, passed) and lookups[done(outcomes, passed)]
-            specs = offered(specs, lookup or lookup_only, fitting)
-            lookup_only, fitting = False, []
+            specs = [s for s in specs if s.name in only] if only else offered(specs, lookup or lookup_only, fitting)
+            lookup_only, fitting, only = False, [], []
             try:
                 text, requested, guessed = await model_step(self.backend, messages, specs, metrics, emit, model_only,
                                                             TurnActions(calls, outcomes, read_only, actuators))
@@ -262,8 +263,8 @@ class Assistant:
                     metrics.mark("phrase_answer")
                     break
             if left is not None:  # only looked up: the request itself is asked for once more
-                nudged = True
-                messages.append(ChatMessage("user", step_hint(left, False, first=False)))
+                nudged, only = True, left[1]
+                messages.append(ChatMessage("user", step_hint(left[0], False, first=False)))
             elif more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next

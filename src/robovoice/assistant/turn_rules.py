@@ -47,20 +47,23 @@ def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: i
 
 
 def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolSpec],
-            calls: Sequence[ToolCalled]) -> str | None:
+            calls: Sequence[ToolCalled]) -> tuple[str, list[str]] | None:
     """The first thing asked that names a value an action lists ("wait for me in the hallway":
     a place `navigate_to` takes), when the turn has called look-ups and no action: the small
     model looks up its pose or the camera and answers as if it had gone ("I'm waiting in the
-    hallway."). That request is asked for once more; the check before acting still decides
-    whatever it calls then. A look-up asked for ("tell me about the kitchen") is not."""
+    hallway."). That request, and the actions that list what it names: it is asked for once
+    more, offered only those; the check before acting still decides whatever is called then.
+    A look-up asked for ("tell me about the kitchen") is not."""
     actions = [s for s in specs if not s.read_only]
     if not calls or any(c.name in {s.name for s in actions} for c in calls):
         return None
     for step, lookup in zip(asked, lookups, strict=True):
         heard = words(step)
-        if not lookup and any(not unsaid(s.description, s.parameters, {arg: value}, heard)
-                              for s in actions for arg, values in listed(s.parameters).items() for value in values):
-            return step
+        naming = [s.name for s in actions if not lookup and any(
+            not unsaid(s.description, s.parameters, {arg: value}, heard)
+            for arg, values in listed(s.parameters).items() for value in values)]
+        if naming:
+            return step, naming
     return None
 
 
