@@ -49,6 +49,7 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "You ought to close the curtains, it's getting dark.",
     "Perhaps you'd better drive to the garden.",
     "I reckon you should ring the plumber.",
+    "Fetch the post for me, if that's okay.",  # courtesy after the comma, not a condition
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -86,6 +87,10 @@ def test_requests_ask_for_action(text: str) -> None:
     ("You should've rung the plumber yesterday.", ClauseKind.STATEMENT),  # advice too late is talk
     ("You must be worn out from the garden.", ClauseKind.STATEMENT),
     ("My sister says you ought to visit the garden.", ClauseKind.STATEMENT),  # someone else's advice, told
+    # a condition after the comma, or a "supposing …" before: what it would do then
+    ("Would you phone the plumber, if the pipe burst?", ClauseKind.ABILITY),
+    ("Supposing I fell in the garden, would you come out to me?", ClauseKind.ABILITY),
+    ("Imagine the lights went out, could you still drive to the garden?", ClauseKind.ABILITY),
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)

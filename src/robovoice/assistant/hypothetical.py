@@ -48,8 +48,9 @@ def asks_ability(text: str) -> bool:
 
 
 # A condition before a request: what to do if or when something happens, not now.
-CONDITION = re.compile(  # (not a question: "when will you be charged?")
-    r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case)\b",
+CONDITION = re.compile(  # (not a question: "when will you be charged?"); "supposing I fell, …" too
+    r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case|"
+    r"suppos(?:e|ing)|imagine|what if|let'?s say|say (?:i|we)\b)\b",
     re.IGNORECASE)
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 COURTESY = re.compile(

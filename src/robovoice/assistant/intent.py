@@ -171,6 +171,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     undone: list[int] = []  # the requests a bare "no" just took back: a "not Ben" after it says which
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
+    conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
     for part in split_clauses(text):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if clauses and clauses[-1].kind is ClauseKind.ABILITY and \
@@ -220,7 +221,10 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind, part = ClauseKind.REQUEST, rest  # "…, and when you get there give Ben a ring": the next step
         elif CONDITION.match(bare):
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
-            condition = condition or not COURTESY.match(bare)
+            if not COURTESY.match(bare) and not condition:
+                condition = True
+                last = next((i for i in reversed(range(len(clauses))) if FILLER.sub("", clauses[i].text).strip()), None)
+                conditioned = last if last is not None and clauses[last].kind is ClauseKind.REQUEST else None
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
         if kind is ClauseKind.REQUEST and conditional(bare):
@@ -235,7 +239,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)):
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
-            kind, condition = ClauseKind.ABILITY, False  # what it would do then, asked now
+            kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
         if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
         if kind is ClauseKind.REQUEST and _JUST.match(part.strip()) and _fragment(part) and any(
@@ -275,6 +279,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             front = None
             continue
         clauses.append(Clause(part, kind))
+    if condition and conditioned is not None:  # a condition after the request, nothing after it to apply to:
+        clauses[conditioned] = Clause(clauses[conditioned].text, ClauseKind.ABILITY)  # "…, if I had a fall?"
     if any(JUST_ASKING.search(c.text) for c in clauses):  # "Out of interest, can you …?"
         # "Could you, in theory, show a film …?": the "could you" is a clause of its own
         asked = bool(QUESTION_FORM.match(FILLER.sub("", text.strip())))
