@@ -91,6 +91,7 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Would you phone the plumber, if the pipe burst?", ClauseKind.ABILITY),
     ("Supposing I fell in the garden, would you come out to me?", ClauseKind.ABILITY),
     ("Imagine the lights went out, could you still drive to the garden?", ClauseKind.ABILITY),
+    ("Can you fit under the table, do you reckon?", ClauseKind.ABILITY),  # an opinion asked of a "can you"
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)

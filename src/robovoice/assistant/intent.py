@@ -179,6 +179,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "would you ever …, please?"
             continue
         bare = FILLER.sub("", part.strip()).strip()
+        if _OPINION.match(bare) and clauses and clauses[-1].kind is ClauseKind.REQUEST and \
+                QUESTION_FORM.match(FILLER.sub("", clauses[-1].text.strip())):
+            # "can you fit through the front door, do you reckon?": whether it could, not a request
+            clauses[-1] = Clause(clauses[-1].text, ClauseKind.ABILITY)
+            clauses.append(Clause(part, ClauseKind.STATEMENT))
+            continue
         kind = classify(part)
         if (after := _AFTER.match(bare)) is not None:
             rest = bare[after.end():]
@@ -292,6 +298,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+_OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 _ARTICLES = frozenset({"the", "a", "my", "your", "to"})
 _AFTER = re.compile(r"^after(?:wards)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": that reads as no request
 _LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
