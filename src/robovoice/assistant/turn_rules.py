@@ -10,7 +10,8 @@ from collections.abc import Collection, Mapping, Sequence
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.assistant.fit import listed, unsaid
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
-from robovoice.assistant.lexicon import words
+from robovoice.assistant.hypothetical import QUESTION_FORM
+from robovoice.assistant.lexicon import FILLER, words
 from robovoice.assistant.reading import ClauseKind
 from robovoice.llm.base import ChatMessage, ToolCallRequested, ToolSpec
 
@@ -53,12 +54,16 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
     model looks up its pose or the camera and answers as if it had gone ("I'm waiting in the
     hallway."). That request, and the actions that list what it names: it is asked for once
     more, offered only those; the check before acting still decides whatever is called then.
-    A look-up asked for ("tell me about the kitchen") is not."""
+    Not a look-up asked for ("tell me about the kitchen"), nor a request said as a question
+    ("can you fit through the front door, do you reckon?"): where the reading takes a question
+    for a request, the model's own answer is the second check, and pushing it would act."""
     actions = [s for s in specs if not s.read_only]
     if not calls or any(c.name in {s.name for s in actions} for c in calls):
         return None
     for step, lookup in zip(asked, lookups, strict=True):
         heard = words(step)
+        if QUESTION_FORM.match(FILLER.sub("", step.strip())):
+            continue
         naming = [s.name for s in actions if not lookup and any(
             not unsaid(s.description, s.parameters, {arg: value}, heard)
             for arg, values in listed(s.parameters).items() for value in values)]
