@@ -50,6 +50,8 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "Perhaps you'd better drive to the garden.",
     "I reckon you should ring the plumber.",
     "Fetch the post for me, if that's okay.",  # courtesy after the comma, not a condition
+    "First the garden, then the garage, please.",  # places in order, no verb: the steps
+    "The garage first, and then the garden.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)

@@ -241,8 +241,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
         previous = next((c for c in reversed(clauses) if FILLER.sub("", c.text).strip()), None)
-        if kind is ClauseKind.STATEMENT and _fragment(part) and (
-                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)):
+        if kind is ClauseKind.STATEMENT and (_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()) or _fragment(part) and (
+                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST))):
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
@@ -298,6 +298,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+# A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
+_ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |your )?\w+(?: \w+)?"
+                               r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 _ARTICLES = frozenset({"the", "a", "my", "your", "to"})
 _AFTER = re.compile(r"^after(?:wards)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": that reads as no request
