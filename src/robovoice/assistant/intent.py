@@ -241,8 +241,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
         previous = next((c for c in reversed(clauses) if FILLER.sub("", c.text).strip()), None)
-        if kind is ClauseKind.STATEMENT and (_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()) or _fragment(part) and (
-                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST))):
+        ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()))  # "first the kitchen"
+        if kind is ClauseKind.STATEMENT and (ordered or (_fragment(part) and (
+                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))):
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
