@@ -166,7 +166,7 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
         names = _names_for(value, description)
         if value.lower() not in {v.lower() for v in choices[name]} and names and names <= said:
             continue  # the person's own name for it ("the front room"): the robot resolves it or says it cannot
-        if any(_said_whole(g, said) for g in glosses(value, description)):
+        if any(said_whole(g, said) for g in glosses(value, description)):
             continue  # "the front room": a gloss said whole, though "front" and "room" name others too
         others = [n for v in choices[name] if v.lower() != value.lower() for n in _names_for(v, description)]
         if names and not any(_names(s, names) and not any(s in n for n in others) for s in said):
@@ -174,7 +174,14 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
     return missing
 
 
-def _said_whole(phrase: str, said: set[str]) -> bool:
+def named_whole(value: str, description: str, heard: Iterable[str]) -> bool:
+    """`value`, or one of its other names, said whole in `heard` ("the hall", "living room"),
+    not only begun ("washing" does not name the washroom)."""
+    said = {stem(w) for w in usual(heard)}
+    return any(said_whole(p, said) for p in (value, *glosses(value, description)))
+
+
+def said_whole(phrase: str, said: set[str]) -> bool:
     stems = {stem(w) for w in usual(words(phrase))} - _FUNCTION_WORDS
     return bool(stems) and stems <= said
 

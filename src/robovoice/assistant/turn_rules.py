@@ -8,7 +8,7 @@ import json
 from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
-from robovoice.assistant.fit import listed, unsaid
+from robovoice.assistant.fit import listed, named_whole
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
 from robovoice.assistant.hypothetical import QUESTION_FORM
 from robovoice.assistant.lexicon import FILLER, words
@@ -49,7 +49,7 @@ def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: i
 
 def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolSpec],
             calls: Sequence[ToolCalled]) -> tuple[str, list[str]] | None:
-    """The first thing asked that names a value an action lists ("wait for me in the hallway":
+    """The first thing asked that names, whole, a value an action lists ("wait for me in the hallway":
     a place `navigate_to` takes), when the turn has called look-ups and no action: the small
     model looks up its pose or the camera and answers as if it had gone ("I'm waiting in the
     hallway."). That request, and the actions that list what it names: it is asked for once
@@ -65,8 +65,7 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
         if QUESTION_FORM.match(FILLER.sub("", step.strip())):
             continue
         naming = [s.name for s in actions if not lookup and any(
-            not unsaid(s.description, s.parameters, {arg: value}, heard)
-            for arg, values in listed(s.parameters).items() for value in values)]
+            named_whole(value, s.description, heard) for values in listed(s.parameters).values() for value in values)]
         if naming:
             return step, naming
     return None
