@@ -94,6 +94,8 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Supposing I fell in the garden, would you come out to me?", ClauseKind.ABILITY),
     ("Imagine the lights went out, could you still drive to the garden?", ClauseKind.ABILITY),
     ("Can you fit under the table, do you reckon?", ClauseKind.ABILITY),  # an opinion asked of a "can you"
+    ("Just so we know, could you drive into the garden?", ClauseKind.ABILITY),  # said to be only a question
+    ("For my own information, can you open the garage?", ClauseKind.ABILITY),
 ])
 def test_no_action_asked(text: str, why: ClauseKind) -> None:
     intent = read_request(text)

@@ -82,6 +82,7 @@ _EMERGENCY = re.compile(r"\b(?:in (?:an|case of(?: an)?) emergency|if anything (
 # you …?", "Could you ring the doctor? I just want to know you can."
 JUST_ASKING = re.compile(
     r"\b(?:(?:just|only) (?:asking|wondering|curious)|out of (?:interest|curiosity)|hypothetically|in theory|"
+    r"just so (?:i|we)(?:'m| am| are|'re)? (?:know|clear|sure)|for (?:future|my own|my) (?:reference|information)|"
     r"want(?:ed)? to know (?:(?:if|whether|that) )?you (?:can|could)|"
     # "I'm not asking you to do it now, but can you …?": said to be not a request
     r"not (?:asking|telling) you to (?:do (?:it|that|this|anything)|go anywhere)|"
