@@ -52,6 +52,8 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "Fetch the post for me, if that's okay.",  # courtesy after the comma, not a condition
     "First the garden, then the garage, please.",  # places in order, no verb: the steps
     "The garage first, and then the garden.",
+    "Swing by the garage on your way.",  # "swing" is no gerund
+    "Away ben tae the garden, would you?",  # Scots: go through to
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -439,3 +441,12 @@ def test_a_place_after_not_that_one_replaces_it_and_just_that_is_said_again() ->
     assert read_request("Go to the bedroom and put the projector on, well, skip the projector, just the bedroom."
                         ).steps == ("Go to the bedroom",)
     assert not read_request("Would you, hypothetically, drive to the kitchen?").asks_action
+
+
+def test_a_correction_with_i_mean_is_the_step_and_a_gloss_with_it_is_not() -> None:
+    """"…, no, the garden I mean, then …" corrects the place (text v20); "turn it off, the
+    projector I mean" only says what "it" was, and pet names ("…, hen") ask nothing."""
+    assert read_request("Drive to the garage, no, the garden I mean, then ring Ben.").steps == (
+        "the garden I mean", "ring Ben")
+    assert read_request("Turn it off, the radio I mean.").steps == ("Turn it off",)
+    assert read_request("Away through to the garden for me, hen.").steps == ("Away through to the garden for me",)

@@ -102,13 +102,14 @@ _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNOREC
 # An imperative's shape around a verb no list has ("trundle over to the door", "wheel yourself
 # in", "crank up the projector"): a bare first word, then "yourself", a way to a place, or up/on/
 # off a thing. Not a pronoun, a past tense, a gerund or a plural ("went over to", "lights on the").
-_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|over|along|across|back|down|round|around|through|out) ){0,2}"
-                    r"(?:to|into|towards?) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) "
+_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|over|along|across|back|down|up|round|around|through|out|ben) )"
+                    r"{0,2}(?:to|into|towards?|by|tae|intae) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) "
                     r"|(?:the|my|your) \w+ (?:on|off)\b)")  # "whack the projector on"
+# (a gerund's "-ing" is not that of "swing", "bring", "ring")
 _NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
                          r"our|their|someone|somebody|nobody|everyone|went|came|ran|drove|got|took|rode|fell|sat|"
                          r"stood|left|is|are|was|were|am|be|been|has|have|had|do|does|did|can|could|would|will|"
-                         r"should|shall|may|might|must|\w+(?:ed|ing|[^s]s))$")
+                         r"should|shall|may|might|must|(?!(?:sw|br|r|s|fl|sl|st|wr|str)ing$)\w+(?:ed|ing|[^s]s))$")
 
 
 # An utterance whose last request ends on a word that needs one after it was cut off
@@ -243,7 +244,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         previous = next((c for c in reversed(clauses) if FILLER.sub("", c.text).strip()), None)
         ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()))  # "first the kitchen"
         if kind is ClauseKind.STATEMENT and (ordered or (_fragment(part) and (
-                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))):
+                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))
+                or (corrected and _fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
@@ -299,6 +301,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+_I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
 _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |your )?\w+(?: \w+)?"
                                r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
