@@ -1,24 +1,22 @@
 """`LocalLlamaBackend`: the embedded model (llama-cpp-python, CPU), the same events as the rest.
 
-* Loaded once (``chat_format="chatml-function-calling"``, n_ctx 4096, 2 threads
-  by default) on the backend's own single-thread executor; every llama call
-  runs there, and `ThreadStream` bridges its output into asyncio.
-* Prompts follow `chatml_tools` (the chatml-function-calling format, rendered
-  by us; see that module for why). A turn with tools first lets a grammar pick
-  the head (``message:`` or ``functions.<name>:``): a message is then streamed
-  token by token as `TextDelta`; calls are generated whole, each argument
-  object constrained by its JSON schema, and yielded as `ToolCallRequested`
-  as soon as each is complete. A turn without tools is streamed plain ChatML.
-* The head decision right after the user's words can be tilted towards calling
-  a tool by ``tool_bias`` (`local_head`); `decide_head` reports the untilted margin.
+* Loaded once (``chat_format="chatml-function-calling"``, n_ctx 4096, 2 threads by default) on
+  the backend's own single-thread executor; every llama call runs there, and `ThreadStream`
+  bridges its output into asyncio.
+* Prompts follow `chatml_tools` (the chatml-function-calling format, rendered by us; see that
+  module for why). A turn with tools first lets a grammar pick the head (``message:`` or
+  ``functions.<name>:``): a message is then streamed token by token as `TextDelta`; calls are
+  generated whole, each argument object constrained by its JSON schema, and yielded as
+  `ToolCallRequested` as soon as each is complete. A turn without tools is streamed plain ChatML.
+* The head decision right after the user's words can be tilted towards calling a tool by
+  ``tool_bias`` (`local_head`); `decide_head` reports the untilted margin.
 * Prefix reuse: llama.cpp keeps the key/value cache of the last evaluation and
-  ``Llama.generate`` re-evaluates only what follows the longest common token
-  prefix. `warm_up` evaluates the system prompt + tools once, so the first real
-  turn only evaluates the conversation. ``Usage.cached_prompt_tokens`` reports
-  how many prompt tokens were reused.
-* Speculation: `prefill` evaluates an expected turn's prompt (and decodes its tool call)
-  inside the end-of-turn silence; a real turn with the same prompt reuses it
-  (`local_speculation`).
+  ``Llama.generate`` re-evaluates only what follows the longest common token prefix. `warm_up`
+  evaluates the system prompt + tools once (or reads them back from disk: `prompt_state`), so the
+  first real turn only evaluates the conversation. ``Usage.cached_prompt_tokens`` reports how
+  many prompt tokens were reused.
+* Speculation: `prefill` evaluates an expected turn's prompt (and decodes its tool call) inside
+  the end-of-turn silence; a real turn with the same prompt reuses it (`local_speculation`).
 """
 
 from __future__ import annotations
@@ -95,17 +93,15 @@ class LocalLlamaBackend(SpeculativePrefill):
         deadlines: Deadlines = LOCAL_DEADLINES,
         max_tokens: int = 256,
         temperature: float = 0.0,
-        # One call per model step by default: allowed more, the 1.5B model appends unrelated calls
-        # (pose, camera, battery) to the one asked for, tripling turn latency (measured on the eval
-        # set); the assistant loop hands it the results and another step for multi-step requests.
+        # One call per model step by default: allowed more, the 1.5B model appends unrelated calls (pose, camera,
+        # battery), tripling turn latency (eval set); the loop gives it another step for multi-step requests.
         max_calls_per_turn: int = 1,
-        # Added to the call head's first-token logit when the model, given the user's words, picks
-        # between answering and calling a tool (not after tool results). TOOL_BIAS was calibrated
-        # on the evaluation set (docs/llm.md); 0 = off; negative values favour answering.
+        # Added to the call head's first-token logit when the model, given the user's words, picks between answering
+        # and calling a tool (not after tool results): calibrated on the eval set (docs/llm.md); 0 = off,
+        # negative values favour answering.
         tool_bias: float = TOOL_BIAS,
         cache_dir: Path | None = None,
-        # the warmed-up prefix kept on disk for the next start (llm/prompt_state.py)
-        keep_prompt_state: bool = True,
+        keep_prompt_state: bool = True,  # the warmed-up prefix kept on disk (llm/prompt_state.py)
     ) -> None:
         if not llama_cpp_available():
             raise MissingDependencyError("the embedded local LLM (llama-cpp-python)", INSTALL_HINT)
@@ -142,14 +138,8 @@ class LocalLlamaBackend(SpeculativePrefill):
             llama_cpp = _import_llama()
             path = resolve_model_path(self.model_path, self.cache_dir)
             start = time.perf_counter()
-            self._llama = llama_cpp.Llama(
-                model_path=str(path),
-                chat_format="chatml-function-calling",
-                n_ctx=self.n_ctx,
-                n_threads=self.n_threads,
-                n_threads_batch=self.n_threads,
-                verbose=False,
-            )
+            self._llama = llama_cpp.Llama(model_path=str(path), chat_format="chatml-function-calling", n_ctx=self.n_ctx,
+                                          n_threads=self.n_threads, n_threads_batch=self.n_threads, verbose=False)
             self.load_s = time.perf_counter() - start
             log.info("loaded %s in %.2f s", path.name, self.load_s)
         return self._llama
@@ -340,20 +330,15 @@ class LocalLlamaBackend(SpeculativePrefill):
         return self.load_s or 0.0
 
     def _warm_up_blocking(self, prefix: str) -> TurnStats:
-        llama, llama_cpp = self._load_blocking(), _import_llama()
-        turn = Turn(threading.Event())
+        llama, turn = self._load_blocking(), Turn(threading.Event())
         tokens = llama.tokenize(prefix.encode("utf-8"), add_bos=False, special=True)
-        kept = (prompt_state.state_path(self.cache_dir or default_cache_dir(), llama_cpp, Path(llama.model_path),
-                                        self.n_ctx, tokens) if self.keep_prompt_state else None)
-        if kept is not None and prompt_state.load(llama, llama_cpp, kept, tokens):
+        folder = (self.cache_dir or default_cache_dir()) if self.keep_prompt_state else None
+        p_eval_ms, _ = self._perf()
+        turn.stats.from_disk = prompt_state.warm(llama, _import_llama(), folder, self.n_ctx, tokens,
+                                                 lambda: self._complete(turn, prefix, stream=False, max_tokens=1))
+        if turn.stats.from_disk:
             turn.stats.prompt_tokens = turn.stats.cached_prompt_tokens = len(tokens)
-            turn.stats.from_disk = True
-        else:
-            p_eval_ms, _ = self._perf()
-            self._complete(turn, prefix, stream=False, max_tokens=1)
-            turn.stats.prompt_eval_ms = self._perf()[0] - p_eval_ms
-            if kept is not None:
-                prompt_state.save(llama, llama_cpp, kept, tokens)
+        turn.stats.prompt_eval_ms = self._perf()[0] - p_eval_ms
         turn.stats.total_s = time.perf_counter() - turn.start
         return turn.stats
 

@@ -22,7 +22,7 @@ import hashlib
 import json
 import logging
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -85,3 +85,16 @@ def save(llama: Any, llama_cpp: Any, path: Path, tokens: Sequence[int]) -> None:
             old.unlink(missing_ok=True)
     except OSError as exc:
         log.warning("could not save the prompt state to %s: %s", path, exc)
+
+
+def warm(llama: Any, llama_cpp: Any, folder: Path | None, n_ctx: int, tokens: Sequence[int],
+         evaluate: Callable[[], object]) -> bool:
+    """Bring `llama` to `tokens` evaluated: from the state kept under `folder` (None: none is
+    kept), else by `evaluate`, whose result is then kept; whether it came from disk."""
+    path = state_path(folder, llama_cpp, Path(llama.model_path), n_ctx, tokens) if folder is not None else None
+    if path is not None and load(llama, llama_cpp, path, tokens):
+        return True
+    evaluate()
+    if path is not None:
+        save(llama, llama_cpp, path, tokens)
+    return False
