@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import NOT_GENERIC, words
+from robovoice.assistant.lexicon import FILLER, NOT_GENERIC, words
 
 _ABILITY = re.compile(
     r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
@@ -89,6 +89,11 @@ JUST_ASKING = re.compile(
     r"(?:don'?t|do not) need (?:you to do )?(?:it|that|this)(?: done)? (?:now|today|yet))\b",
     re.IGNORECASE)
 QUESTION_FORM = re.compile(r"^(?:can|could|would|will) you\b", re.IGNORECASE)
+
+
+def asked_as_question(clause: str) -> bool:
+    """The clause (fillers aside) is said as a "can / could / would / will you …" question."""
+    return bool(QUESTION_FORM.match(FILLER.sub("", clause.strip())))
 
 
 def conditional(request: str) -> bool:

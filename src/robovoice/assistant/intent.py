@@ -32,8 +32,8 @@ from robovoice.assistant.hypothetical import (
     COURTESY,
     JUST_ASKING,
     ON_ARRIVAL,
-    QUESTION_FORM,
     SEQUENCE,
+    asked_as_question,
     asks_ability,
     conditional,
 )
@@ -181,7 +181,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         bare = FILLER.sub("", part.strip()).strip()
         if _OPINION.match(bare) and clauses and clauses[-1].kind is ClauseKind.REQUEST and \
-                QUESTION_FORM.match(FILLER.sub("", clauses[-1].text.strip())):
+                asked_as_question(clauses[-1].text):
             # "can you fit through the front door, do you reckon?": whether it could, not a request
             clauses[-1] = Clause(clauses[-1].text, ClauseKind.ABILITY)
             clauses.append(Clause(part, ClauseKind.STATEMENT))
@@ -230,7 +230,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
             if not COURTESY.match(bare) and not condition:
                 condition = True
-                last = next((i for i in reversed(range(len(clauses))) if FILLER.sub("", clauses[i].text).strip()), None)
+                last = _last_said(clauses)
                 conditioned = last if last is not None and clauses[last].kind is ClauseKind.REQUEST else None
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
@@ -241,7 +241,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "Bedroom. Now, please."
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
-        previous = next((c for c in reversed(clauses) if FILLER.sub("", c.text).strip()), None)
+        previous = clauses[at] if (at := _last_said(clauses)) is not None else None
         ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()))  # "first the kitchen"
         if kind is ClauseKind.STATEMENT and (ordered or (_fragment(part) and (
                 corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))
@@ -292,9 +292,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         clauses[conditioned] = Clause(clauses[conditioned].text, ClauseKind.ABILITY)  # "…, if I had a fall?"
     if any(JUST_ASKING.search(c.text) for c in clauses):  # "Out of interest, can you …?"
         # "Could you, in theory, show a film …?": the "could you" is a clause of its own
-        asked = bool(QUESTION_FORM.match(FILLER.sub("", text.strip())))
+        asked = asked_as_question(text)
         clauses = [Clause(c.text, ClauseKind.ABILITY) if c.kind is ClauseKind.REQUEST
-                   and (asked or QUESTION_FORM.match(FILLER.sub("", c.text.strip()))) else c for c in clauses]
+                   and (asked or asked_as_question(c.text)) else c for c in clauses]
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
     return Intent(tuple(clauses), answering)
@@ -324,6 +324,11 @@ _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # (not in what it is for: "put the projector on so I can see her" is a thing of its own)
 _BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
+
+
+def _last_said(clauses: list[Clause]) -> int | None:
+    """Where the last clause with more than fillers is."""
+    return next((i for i in reversed(range(len(clauses))) if FILLER.sub("", clauses[i].text).strip()), None)
 
 
 def _said(part: str) -> list[str]:

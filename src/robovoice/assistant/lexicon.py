@@ -22,7 +22,7 @@ FILLER = re.compile(
     re.IGNORECASE,
 )
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
-             r"dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|sweetheart|lovey|pal)$", re.IGNORECASE)
+             r"dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|sweetheart|lovey)$", re.IGNORECASE)
 
 # Putting a request off.
 LATER = re.compile(

@@ -10,8 +10,8 @@ from collections.abc import Collection, Mapping, Sequence
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.assistant.fit import listed, named_whole
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
-from robovoice.assistant.hypothetical import QUESTION_FORM
-from robovoice.assistant.lexicon import FILLER, words
+from robovoice.assistant.hypothetical import asked_as_question
+from robovoice.assistant.lexicon import words
 from robovoice.assistant.reading import ClauseKind
 from robovoice.llm.base import ChatMessage, ToolCallRequested, ToolSpec
 
@@ -58,13 +58,13 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
     ("can you fit through the front door, do you reckon?"): where the reading takes a question
     for a request, the model's own answer is the second check, and pushing it would act."""
     actions = [s for s in specs if not s.read_only]
-    if not calls or any(c.name in {s.name for s in actions} for c in calls):
+    if not calls or {c.name for c in calls} & {s.name for s in actions}:
         return None
     for step, lookup in zip(asked, lookups, strict=True):
-        heard = words(step)
-        if QUESTION_FORM.match(FILLER.sub("", step.strip())):
+        if lookup or asked_as_question(step):
             continue
-        naming = [s.name for s in actions if not lookup and any(
+        heard = words(step)
+        naming = [s.name for s in actions if any(
             named_whole(value, s.description, heard) for values in listed(s.parameters).values() for value in values)]
         if naming:
             return step, naming
