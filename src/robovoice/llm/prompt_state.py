@@ -4,7 +4,7 @@ Evaluating the unchanging prefix is most of a cold start: 1,246 tokens took 40-8
 2-core machine (docs/performance.md), and every start of the assistant, the voice pipeline or
 a soak paid it again. After a warm-up the model's state for the prefix is written with
 llama.cpp's own session file (``llama_state_save_file``: the key/value cache and the
-tokens, about 32 MB for the sim robot's prefix), and the next warm-up for the same prefix
+tokens, about 36 MB for the sim robot's prefix), and the next warm-up for the same prefix
 loads it in well under a second instead.
 
 A state is only used for exactly what made it: the file's name is a hash of llama-cpp-python's
@@ -28,7 +28,7 @@ from typing import Any
 
 log = logging.getLogger(__name__)
 
-#: How many states are kept (the newest): one per robot and prompt in use, about 32 MB each.
+#: How many states are kept (the newest): one per robot and prompt in use, about 36 MB each.
 KEEP = 4
 FOLDER = "prompt-states"
 
