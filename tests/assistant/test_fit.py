@@ -193,3 +193,23 @@ def test_a_places_other_name_fits_its_drive_whatever_the_verb() -> None:
     assert refusal(text, SPECS["navigate_to"], {"target": "bathroom"}, (), VOICE) is None
     body = refusal(text, SPECS["navigate_to"], {"target": "kitchen"}, (), VOICE)
     assert body is not None and body["details"]["reason"] == OTHER
+
+
+@pytest.mark.parametrize(("text", "tool", "arguments", "meant"), [
+    ("Right, we've had our chat, you can halt the video now.", "stop_robot", {}, "end_video_call"),
+    ("Stop the project, turn it on.", "stop_robot", {}, "set_projector_power"),  # a misheard "pop the projector on"
+    ("Please plug the projector in.", "return_to_dock", {}, "set_projector_power"),
+])
+def test_a_word_for_a_tool_before_what_another_acts_on_does_not_fit_it(
+        text: str, tool: str, arguments: dict[str, object], meant: str) -> None:
+    """Dev audio (session 16): "Hey Jarvis, pop the projector on and then ring my son Ben"
+    heard as "Stop the project, turn on and then ring my song, Ben." stopped the robot."""
+    body = refusal(read_request(text), SPECS[tool], arguments, (), VOICE)
+    assert body is not None and body["details"]["reason"] == OTHER
+    assert meant in body["details"]["fits"]
+
+
+@pytest.mark.parametrize("text", ["Stop the robot!", "Stop, the video can wait.", "Halt there, then ring Ben.",
+                                  "Stop that!"])
+def test_a_stop_of_the_robot_itself_still_fits(text: str) -> None:
+    assert refusal(read_request(text), SPECS["stop_robot"], {}, (), VOICE) is None

@@ -99,22 +99,49 @@ def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
 
 
 def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[str, Any],
-         said: Collection[str] = (), rivals: Iterable[Sequence[str]] = (), aliases: Iterable[str] = ()) -> bool:
+         said: Collection[str] = (), rivals: Iterable[Sequence[str]] = (), aliases: Iterable[str] = (),
+         elsewhere: Collection[str] = ()) -> bool:
     """Some request clause says a word of this call's vocabulary (True when none is declared;
     `aliases`: the words of its values' other names, "hall" for the hallway), and does not open
     with a rival tool's words (`rivals`: the declared words of each tool acting on the same
-    thing) while this call's come later: "hang up the call" asks to end a call, not to start one."""
+    thing) while this call's come later: "hang up the call" asks to end a call, not to start one.
+    A call without words for its arguments (a stop, a yes/no) does not fit a clause whose
+    words for it only come before what another tool acts on (`elsewhere`: the other tools'
+    `subject_words`): "you can stop the call now" is not the robot's stop."""
     if not declared:
         return True
     phrases = vocabulary(name, declared, arguments) + [[stem(w)] for w in aliases]
     others = [_stems(phrase) for phrase in itertools.chain.from_iterable(rivals)]
+    aimed = {stem(w) for w in elsewhere} - {stem(w) for w in subject_words(name)}
+    if any(isinstance(value, str) for value in arguments.values()):
+        aimed = set()  # a place or a person says what it acts on
     for clause in _request_stems(intent, said):
-        if not any(_says(clause, phrase) for phrase in phrases):
+        if not any(_says(clause, phrase) and not _aimed_elsewhere(clause, phrase, aimed) for phrase in phrases):
             continue
         if any(_opens(clause, p) for p in others) and not any(_opens(clause, p) for p in phrases):
             continue
         return True
     return False
+
+
+_DETERMINERS = frozenset(stem(w) for w in ("the", "that", "this", "your", "my", "a", "an"))
+
+
+def _aimed_elsewhere(clause: Sequence[str], phrase: Sequence[str], aimed: Collection[str]) -> bool:
+    """Each time the clause says the phrase, what follows it (after a "the", a "that") names
+    something in `aimed`: "stop the call", "plug the projector in", "stop the project" (a
+    misheard "pop the projector on")."""
+    n = len(phrase)
+    found = [i for i in range(len(clause) - n + 1) if list(clause[i:i + n]) == list(phrase)]
+    if not aimed or not found:
+        return False
+    for i in found:
+        j = i + n
+        while j < len(clause) and clause[j] in _DETERMINERS:
+            j += 1
+        if j >= len(clause) or not _names(clause[j], aimed):
+            return False
+    return True
 
 
 def _opens(clause: Sequence[str], phrase: Sequence[str]) -> bool:

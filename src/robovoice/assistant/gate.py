@@ -189,7 +189,7 @@ def refusal(
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
         elif not fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared),
-                      glossed):
+                      glossed, [w for tool in declared if tool != name for w in subject_words(tool)]):
             why = OTHER  # "plug yourself in" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
