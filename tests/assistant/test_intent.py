@@ -450,3 +450,14 @@ def test_a_correction_with_i_mean_is_the_step_and_a_gloss_with_it_is_not() -> No
         "the garden I mean", "ring Ben")
     assert read_request("Turn it off, the radio I mean.").steps == ("Turn it off",)
     assert read_request("Away through to the garden for me, hen.").steps == ("Away through to the garden for me",)
+
+
+def test_a_correction_takes_back_the_last_step_and_a_remark_about_oneself_does_not_end_it() -> None:
+    """Dev corr-3…6 (text test v21: "go to the kitchen, then the bedroom, no, sorry, the
+    bathroom" took the kitchen back too; "…, no, sorry, I'm muddled, the living room" lost the
+    living room)."""
+    assert read_request("Wander to the study, then the garage, no, sorry, the garden.").steps == (
+        "Wander to the study", "the garden")
+    assert read_request("Head to the loft, no, sorry, I'm all at sea today, the cellar.").steps == ("the cellar",)
+    assert read_request("Ring Clara, no, my head's all over the place, Ben.").steps == ("Ben",)
+    assert read_request("Go to the study, no, I'm fine, thanks.").steps == ()

@@ -262,7 +262,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         when_only = bool(LATER_ONLY.match(bare)) or (when_only and not bare)
         if kind is ClauseKind.REQUEST and _reason(bare, clauses):
             kind = ClauseKind.STATEMENT  # "ring Clara, I want to show her my cake": why, not what
-        corrected = corrected and not bare
+        aside = kind is ClauseKind.STATEMENT and bool(_ASIDE.match(bare))  # "…, no, sorry, I'm muddled, …"
+        corrected = corrected and (not bare or aside)
         if (named := _named_back(bare, clauses, undone)) is not None:
             # "…, no, not Ben", "actually, skip the kitchen": only the request that names it is withdrawn;
             # with none left, a place or a person said next is the one meant ("no, not the kitchen, the hallway")
@@ -271,11 +272,14 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind, corrected = ClauseKind.NEGATED, True  # "…, not the kitchen, I meant the living room"
         if kind is ClauseKind.REQUEST and undone and _fragment(part):
             # "turn the projector on, then go to the living room. No, the bedroom": the place
-            # corrects the last request (with the fragments after its verb), not the ones before
-            start = max((i for i in undone if not _fragment(clauses[i].text)), default=0)
+            # corrects the last step ("go to the living room, then the kitchen, no, the
+            # hallway": the kitchen), not the ones before; "just" the place, the last request
+            # with the fragments after its verb ("call Clara and then Ben. No, just Ben.")
+            start = max((i for i in undone if not _fragment(clauses[i].text)), default=0) \
+                if _JUST.match(part.strip()) else max(undone)
             clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and i < start else c
                        for i, c in enumerate(clauses)]
-        undone = undone if not bare else []  # "no, hang on, not the kitchen": the "no" still holds
+        undone = undone if not bare or aside else []  # "no, hang on, not the kitchen": the "no" still holds
         asked_before = any(c.kind is ClauseKind.REQUEST for c in clauses)
         if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or asked_before):
             # "switch the projector on… actually, no, don't" / "…, scratch that": the requests said before are withdrawn
@@ -301,6 +305,10 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+# A remark about oneself inside a correction: "go to the bedroom, no, sorry, I'm muddled, the
+# living room" (the place after it is still the one meant)
+_ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
+                    r"|(?:good|dear|bless) (?:me|grief|lord)|goodness)\b", re.IGNORECASE)
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
 _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |your )?\w+(?: \w+)?"
