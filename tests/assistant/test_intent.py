@@ -461,3 +461,17 @@ def test_a_correction_takes_back_the_last_step_and_a_remark_about_oneself_does_n
     assert read_request("Head to the loft, no, sorry, I'm all at sea today, the cellar.").steps == ("the cellar",)
     assert read_request("Ring Clara, no, my head's all over the place, Ben.").steps == ("Ben",)
     assert read_request("Go to the study, no, I'm fine, thanks.").steps == ()
+
+
+def test_where_the_robot_will_have_got_to_is_the_first_step() -> None:
+    """Dev once-1, 2, 4 (text test v21: "switch the projector on once you've got yourself into
+    the living room" and "once you're in the bedroom, get Dr Weber on a video call" did not go)."""
+    assert read_request("Ring Clara as soon as you've got to the garden.").steps == (
+        "get to the garden", "Ring Clara")
+    assert read_request("Once you're in the study, switch the radio off.").steps == (
+        "go to the study", "switch the radio off")
+    # a drive asked already is not asked twice; a finished job is no place; "when" may be any time
+    assert read_request("Head to the study, and once you're in the study, ring Ben.").steps == (
+        "Head to the study", "ring Ben")
+    assert read_request("Call Ben when you've finished charging.").steps == ("Call Ben when you've finished charging",)
+    assert not read_request("When you're in the study, switch the radio off.").asks_action

@@ -63,7 +63,14 @@ COURTESY = re.compile(
 ON_ARRIVAL = re.compile(r"^(?:when|once) you(?:'re| are)? (?:(?:get|arrive)\w*(?: (?:there|in there|back|in|home))?"
                         r"|there|in there|back)\b[\s,]*", re.IGNORECASE)
 # … these say what to do first ("once you've checked your battery, come here").
-SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when) you(?:'ve| have) (\w+)", re.IGNORECASE)
+SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| have) (\w+)", re.IGNORECASE)
+# Being somewhere as the first step: "once you're in the bedroom, …" (not "when you're in the
+# kitchen, …": that may be whenever it is), and "… once you've got to the bedroom", said last.
+ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:'re| are) (?:in|at|by|inside|into) "
+                        r"((?:the|my|your) \w+(?: \w+)?)$", re.IGNORECASE)
+ARRIVED = re.compile(r"\s+((?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"
+                     r"|been|gone|popped|nipped)(?: yourself| over| down| up| through| across| back)*"
+                     r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?)\s*$", re.IGNORECASE)
 
 # A condition after the request ("can you find your way back to your charger when you're running
 # low?", "could you ring the doctor in an emergency?"): the same, said the other way round.

@@ -28,10 +28,12 @@ import re
 
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
+    ARRIVED,
     CONDITION,
     COURTESY,
     JUST_ASKING,
     ON_ARRIVAL,
+    ONCE_THERE,
     SEQUENCE,
     asked_as_question,
     asks_ability,
@@ -173,7 +175,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
-    for part in split_clauses(text):
+    for part in _arrival_first(split_clauses(text)):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if clauses and clauses[-1].kind is ClauseKind.ABILITY and \
                     classify(f"{clauses[-1].text} {part.strip()}") is ClauseKind.REQUEST:
@@ -220,6 +222,14 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
             kind, part = ClauseKind.REQUEST, base_form(sequence.group(1)) + bare[sequence.end():]
             front = _first_asked(clauses)
+        elif there := ONCE_THERE.match(bare):
+            # "once you're in the bedroom, get Dr Weber on a video call": going there is the
+            # first step, unless a request said before goes there already
+            place = set(words(there.group(1))) - _ARTICLES
+            if any(c.kind is ClauseKind.REQUEST and place <= set(words(c.text)) for c in clauses):
+                clauses.append(Clause(part, ClauseKind.STATEMENT))
+                continue
+            kind, part = ClauseKind.REQUEST, f"go to {there.group(1)}"
         elif arrival := ON_ARRIVAL.match(bare):
             rest = bare[arrival.end():]
             if not rest or classify(rest) is not ClauseKind.REQUEST:
@@ -332,6 +342,20 @@ _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # (not in what it is for: "put the projector on so I can see her" is a thing of its own)
 _BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
+
+
+def _arrival_first(parts: list[str]) -> list[str]:
+    """A request that ends on where the robot will have got to ("give Anna a ring once you've
+    made it to the bedroom") as two clauses in the order said: the arrival (a `SEQUENCE`
+    clause, which goes first) after the request."""
+    out: list[str] = []
+    for part in parts:
+        late = ARRIVED.search(part)
+        if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:
+            out += [part[:late.start()], late.group(1)]
+        else:
+            out.append(part)
+    return out
 
 
 def _last_said(clauses: list[Clause]) -> int | None:
