@@ -475,3 +475,22 @@ def test_where_the_robot_will_have_got_to_is_the_first_step() -> None:
         "Head to the study", "ring Ben")
     assert read_request("Call Ben when you've finished charging.").steps == ("Call Ben when you've finished charging",)
     assert not read_request("When you're in the study, switch the radio off.").asks_action
+
+
+@pytest.mark.parametrize("text", [
+    "Kindly take yourself to the study.",  # Indian English
+    "Gie the doctor a ring, would ye?",  # Scots: give; "would ye" is a tag
+    "Away ben the study for me.",  # Scots: through to
+    "Away you go to the garden, pet.",
+    "Kill the radio, would you?",
+    "Would you ever pop out to the garden and fetch my hat for me?",  # Irish: "for me" in a later clause
+])
+def test_everyday_requests_from_around_the_isles_and_beyond_ask(text: str) -> None:
+    """Dev kindly-1, 2, gie-1, away-2, kill-1, ever-4 (text test v21 read these as talk or as
+    questions about ability)."""
+    assert read_request(text).asks_action
+
+
+def test_would_you_ever_without_for_whom_is_still_a_question() -> None:
+    assert not read_request("Would you ever go out to the garden? Just wondering.").asks_action
+    assert not read_request("Would you ever go out to the garden and look around on your own?").asks_action

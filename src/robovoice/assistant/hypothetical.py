@@ -40,6 +40,15 @@ def _asks_about_kinds(text: str) -> bool:
 _WOULD_YOU_EVER = re.compile(r"^would you ever (?=.*\b(?:for (?:me|us)|please)\b)", re.IGNORECASE)
 
 
+def asks_ever(clause: str, utterance: str) -> bool:
+    """A "would you ever …" clause whose sentence says for whom or "please" in a later clause
+    ("would you ever go down to the kitchen and have a look for me, love?"): it asks."""
+    start = utterance.find(clause)
+    sentence = re.split(r"[.?!]", utterance[start:], maxsplit=1)[0] if start >= 0 else clause
+    return bool(re.match(r"would you ever\b", FILLER.sub("", clause.strip()), re.IGNORECASE)) and bool(
+        _WOULD_YOU_EVER.match(FILLER.sub("", sentence.strip()).lower()))
+
+
 def asks_ability(text: str) -> bool:
     """The clause (fillers stripped) asks whether the robot can do something."""
     lowered = _WOULD_YOU_EVER.sub("would you ", text.lower())

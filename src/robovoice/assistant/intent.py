@@ -37,6 +37,7 @@ from robovoice.assistant.hypothetical import (
     SEQUENCE,
     asked_as_question,
     asks_ability,
+    asks_ever,
     conditional,
 )
 from robovoice.assistant.lexicon import (
@@ -71,7 +72,7 @@ _NEGATION = re.compile(
 _MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
-    r"^time to\b|^off you go\b|^go and\b|"
+    r"^time to\b|^(?:off|away) you go\b|^go and\b|"
     # advice to the robot is a request, not a past it missed ("you ought to charge up", "I think
     # you'd better ring Clara"; not "you should have seen it", "you must be tired")
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
@@ -105,7 +106,7 @@ _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNOREC
 # in", "crank up the projector"): a bare first word, then "yourself", a way to a place, or up/on/
 # off a thing. Not a pronoun, a past tense, a gerund or a plural ("went over to", "lights on the").
 _SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|over|along|across|back|down|up|round|around|through|out|ben) )"
-                    r"{0,2}(?:to|into|towards?|by|tae|intae) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) "
+                    r"{0,2}(?:to|into|towards?|by|tae|intae|ben) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) "
                     r"|(?:the|my|your) \w+ (?:on|off)\b)")  # "whack the projector on"
 # (a gerund's "-ing" is not that of "swing", "bring", "ring")
 _NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
@@ -189,6 +190,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
         kind = classify(part)
+        if kind is ClauseKind.ABILITY and asks_ever(part, text):
+            kind = classify(re.sub(r"\bever\s+", "", part, count=1))  # "would you ever …, for me?"
         if (after := _AFTER.match(bare)) is not None:
             rest = bare[after.end():]
             if not rest and clauses:

@@ -15,13 +15,13 @@ def words(text: str) -> list[str]:
 
 # Said before or around a request without changing it.
 FILLER = re.compile(
-    r"^(?:(?:please|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|firstly|"
-    r"next|finally|just|off you|i mean|i meant|wait a (?:sec|second|minute|moment|mo)|one (?:sec|second|moment)|"
-    r"hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|erm|er|um|hmm|"
-    r"what am i saying|what was i thinking|silly me)\b[\s,]*)+",
+    r"^(?:(?:please|kindly|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|"
+    r"firstly|next|finally|just|off you|i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
+    r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
+    r"erm|er|um|hmm|what am i saying|what was i thinking|silly me)\b[\s,]*)+",
     re.IGNORECASE,
 )
-TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) you(?: please)?|please|thanks|thank you|"
+TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please)?|please|thanks|thank you|"
              r"dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|sweetheart|lovey)$", re.IGNORECASE)
 
 # Putting a request off.
@@ -38,6 +38,7 @@ IMPERATIVES = frozenset({
     "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
     "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
     "join", "photograph", "snap", "capture", "shut", "try", "nip", "plug", "trot", "toddle", "scoot", "wander", "zip",
+    "kill", "gie",  # "kill the projector"; Scots "gie Clara a call" (give)
 })
 
 QUESTION_WORDS = frozenset({
