@@ -45,6 +45,7 @@ from robovoice.assistant.turn_rules import (
     done,
     is_repeat,
     offered,
+    refit,
     unacted,
     wordless_reply,
 )
@@ -169,6 +170,7 @@ class Assistant:
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
             lookup = asked_left(asked, outcomes, passed) and lookups[done(outcomes, passed)]
+            narrowed = bool(only or fitting) or lookup or lookup_only  # this step offers some tools only
             specs = [s for s in specs if s.name in only] if only else offered(specs, lookup or lookup_only, fitting)
             lookup_only, fitting, only = False, [], []
             try:
@@ -185,8 +187,9 @@ class Assistant:
                 log.info("the model called %s on a step that offers no tools; not run", [r.name for r in requested])
                 requested = []
             by_name = {spec.name: spec for spec in specs}
-            if lookup and any(r.name not in by_name for r in requested):
-                log.info("the model called %s on a look-up step; not run", [r.name for r in requested])
+            if specs and narrowed and any(r.name not in by_name for r in requested):
+                # a call to a tool this step did not offer (a server need not keep to the offer)
+                log.info("the model called %s, not offered on this step; not run", [r.name for r in requested])
                 requested = [r for r in requested if r.name in by_name]
             if requested and all(is_repeat(r, by_name, looked_up) for r in requested):
                 # the same look-up again: its result is already in front of the model (a small
@@ -248,7 +251,11 @@ class Assistant:
             # only looked up, though a place or a person an action lists was asked for (an answer
             # in words alone is not asked again: there a misread question would be made an action)
             left = None if more or nudged or step >= max_steps - 2 else unacted(asked, lookups, tools, calls)
-            more = more or left is not None
+            # the call did not fit what was asked: the request is asked for once more, offered what fits
+            again = not (more or nudged or left is not None) and step < max_steps - 2 and refit(
+                asked, outcomes, passed, fitting)
+            nudged = nudged or again
+            more = more or left is not None or again
             # the tool's own phrase answers this step when it fills and nothing was asked it
             # does not answer: no model step just to word it (assistant/phrase.py)
             # (a look-up's phrase too when more is asked: the turn goes on, and the person hears

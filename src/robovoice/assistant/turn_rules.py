@@ -71,6 +71,16 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
     return None
 
 
+def refit(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: int, fitting: Collection[str]) -> bool:
+    """The only thing asked is still to do after the model's call was refused as not fitting it
+    (`refused_for_fit` names what fits): "off you pop and plug yourself in" and the model rang
+    the doctor, then, offered the dock, answered "I did not ask for a video call." It is asked
+    for once more, offered what fits (a compound request's next step is asked anyway). Not a
+    request said as a question: there the model's own answer stays the second check."""
+    due = done(outcomes, passed)
+    return bool(fitting) and len(asked) == 1 and due == 0 and not asked_as_question(asked[0])
+
+
 def _refusal_details(outcome: ToolReturned) -> dict[str, object]:
     """The ``details`` of the check before acting's refusal of this call (empty: not refused)."""
     details = outcome.result.get("details") if outcome.error == NOT_REQUESTED and outcome.result is not None else None
