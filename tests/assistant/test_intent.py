@@ -484,6 +484,7 @@ def test_where_the_robot_will_have_got_to_is_the_first_step() -> None:
     "Away you go to the garden, pet.",
     "Kill the radio, would you?",
     "Would you ever pop out to the garden and fetch my hat for me?",  # Irish: "for me" in a later clause
+    "Enter the study and wait there.",  # dev enter-1 (audio test v12 heard "head to the front door" so)
 ])
 def test_everyday_requests_from_around_the_isles_and_beyond_ask(text: str) -> None:
     """Dev kindly-1, 2, gie-1, away-2, kill-1, ever-4 (text test v21 read these as talk or as

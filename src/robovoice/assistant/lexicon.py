@@ -38,7 +38,7 @@ IMPERATIVES = frozenset({
     "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
     "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
     "join", "photograph", "snap", "capture", "shut", "try", "nip", "plug", "trot", "toddle", "scoot", "wander", "zip",
-    "kill", "gie",  # "kill the projector"; Scots "gie Clara a call" (give)
+    "kill", "gie", "enter",  # "kill the projector"; Scots "gie Clara a call" (give); "enter the kitchen"
 })
 
 QUESTION_WORDS = frozenset({
