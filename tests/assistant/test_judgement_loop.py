@@ -274,3 +274,15 @@ async def test_a_request_whose_call_did_not_fit_is_asked_for_once_more_with_what
     result, server = await scripted_turn(
         [call("start_video_call", contact="Ben"), TextReply("I can, yes.")], "Could you plug yourself in?")
     assert len(server.requests) == 2 and server.requests[1].last_user_text == "Could you plug yourself in?"
+
+
+async def test_a_look_up_on_the_way_to_an_action_does_not_do_it() -> None:
+    """Text test v21: "Switch the projector on once you've got yourself into the living room":
+    the model looked up its pose first, the look-up was counted as the drive, and the turn moved
+    on to the projector; the drive was never made."""
+    result, server = await scripted_turn(
+        [call("get_robot_pose"), call("navigate_to", target="living room"), call("set_projector_power", on=True)],
+        "Go to the living room, then switch the projector on.")
+    assert [c.name for c in result.calls] == ["get_robot_pose", "navigate_to", "set_projector_power"]
+    assert server.requests[1].last_user_text == "Now do the next thing I asked: Go to the living room."
+    assert server.requests[2].last_user_text == "Now do the next thing I asked: switch the projector on."

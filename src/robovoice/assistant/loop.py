@@ -45,6 +45,7 @@ from robovoice.assistant.turn_rules import (
     done,
     is_repeat,
     offered,
+    on_the_way,
     refit,
     unacted,
     wordless_reply,
@@ -143,6 +144,7 @@ class Assistant:
         replies: list[str] = []
         calls: list[ToolCalled] = []
         outcomes: list[ToolReturned] = []
+        stepped: list[ToolReturned] = []  # the outcomes that count towards the things asked (`on_the_way`)
         fell_back = False
         steps = 0
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
@@ -161,7 +163,7 @@ class Assistant:
         only: list[str] = []  # a request only looked up, asked again: the actions it names, alone
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
-            due = done(outcomes, passed)
+            due = done(stepped, passed)
             return ChatMessage("user", step_hint(asked[due], lookups[due], first=False))
 
         for step in range(max_steps):
@@ -169,7 +171,7 @@ class Assistant:
             # On the last step the model gets no tools, so the turn ends with words, not a call.
             offer = step < max_steps - 1 and not answer_now
             specs: list[ToolSpec] = await self.tools.specs() if offer else []
-            lookup = asked_left(asked, outcomes, passed) and lookups[done(outcomes, passed)]
+            lookup = asked_left(asked, stepped, passed) and lookups[done(stepped, passed)]
             narrowed = bool(only or fitting) or lookup or lookup_only  # this step offers some tools only
             specs = [s for s in specs if s.name in only] if only else offered(specs, lookup or lookup_only, fitting)
             lookup_only, fitting, only = False, [], []
@@ -198,7 +200,7 @@ class Assistant:
                 log.info("the model repeated %s; not run", [r.name for r in requested])
                 requested = []
                 if not text:
-                    answer_now = not asked_left(asked, outcomes, passed)
+                    answer_now = not asked_left(asked, stepped, passed)
                     continue
             if requested and all(call_key(r) in refused for r in requested):
                 # a call refused already, made again: not run, and its step is passed over, so a
@@ -206,7 +208,7 @@ class Assistant:
                 log.info("the model made the refused %s again; not run", [r.name for r in requested])
                 requested, passed = [], passed + 1
                 if not text:
-                    if asked_left(asked, outcomes, passed):
+                    if asked_left(asked, stepped, passed):
                         messages.append(next_step())
                     else:
                         answer_now = True
@@ -223,7 +225,7 @@ class Assistant:
             if not requested and lookup and text and step < max_steps - 2:
                 # the look-up answered in words: the next thing asked is still to do
                 passed += 1
-                if asked_left(asked, outcomes, passed):
+                if asked_left(asked, stepped, passed):
                     messages.append(next_step())
                     continue
             if not requested:
@@ -242,18 +244,21 @@ class Assistant:
                     looked_up.clear()  # an action may change what a look-up returns
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
+            for _, r in ran:
+                if not on_the_way(r, read_only, lookups, done(stepped, passed)):
+                    stepped.append(r)
             fitting = turn_rules.refused_for_fit([r for _, r in ran])
             for _, r in ran:  # a tool error's hint is for the model: never read out
                 hint = r.result.get("hint") if r.is_error and r.result is not None else None
                 if isinstance(hint, str):
                     model_only.add(hint)
-            more = asked_left(asked, outcomes, passed) and step < max_steps - 2
+            more = asked_left(asked, stepped, passed) and step < max_steps - 2
             # only looked up, though a place or a person an action lists was asked for (an answer
             # in words alone is not asked again: there a misread question would be made an action)
             left = None if more or nudged or step >= max_steps - 2 else unacted(asked, lookups, tools, calls)
             # the call did not fit what was asked: the request is asked for once more, offered what fits
             again = not (more or nudged or left is not None) and step < max_steps - 2 and refit(
-                asked, outcomes, passed, fitting)
+                asked, stepped, passed, fitting)
             nudged = nudged or again
             more = more or left is not None or again
             # the tool's own phrase answers this step when it fills and nothing was asked it

@@ -38,6 +38,14 @@ def done(outcomes: Sequence[ToolReturned], passed: int = 0) -> int:
     return len(ran_calls(outcomes)) + passed
 
 
+def on_the_way(outcome: ToolReturned, read_only: Collection[str], lookups: Sequence[bool], due: int) -> bool:
+    """A look-up that ran while the thing asked next is an action ("get yourself into the living
+    room, then …": the model looked up its pose first): it does not do that thing, so it does
+    not count as a step done (it had, and the turn moved on to the projector, the drive never made)."""
+    return (outcome.name in read_only and outcome.error != NOT_REQUESTED and due < len(lookups)
+            and not lookups[due])
+
+
 def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: int = 0) -> bool:
     """A compound request with things asked that are not done yet; or a request whose first
     call was refused as what the person declined beside it ("Please don't switch the projector
