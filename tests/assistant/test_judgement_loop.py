@@ -285,4 +285,10 @@ async def test_a_look_up_on_the_way_to_an_action_does_not_do_it() -> None:
         "Go to the living room, then switch the projector on.")
     assert [c.name for c in result.calls] == ["get_robot_pose", "navigate_to", "set_projector_power"]
     assert server.requests[1].last_user_text == "Now do the next thing I asked: Go to the living room."
+    assert server.requests[1].tool_names == ["navigate_to"]  # told alone, the model looked up again
     assert server.requests[2].last_user_text == "Now do the next thing I asked: switch the projector on."
+    # a look-up asked for in other words than "tell me" is a step of its own (dev dev-multi-8)
+    result, server = await scripted_turn(
+        [call("get_battery_state"), call("navigate_to", target="hallway")], "Check your battery and go to the hallway.")
+    assert [c.name for c in result.calls] == ["get_battery_state", "navigate_to"]
+    assert server.requests[1].last_user_text == "Now do the next thing I asked: go to the hallway."

@@ -244,8 +244,11 @@ class Assistant:
                     looked_up.clear()  # an action may change what a look-up returns
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
-            for _, r in ran:
-                if not on_the_way(r, read_only, lookups, done(stepped, passed)):
+            aside: list[str] = []  # the actions a thing asked names, when a look-up ran on the way to it
+            for _, r in ran:  # a look-up on the way to a place or a person asked: that is still to do
+                if way := on_the_way(r, read_only, asked, lookups, done(stepped, passed), tools):
+                    aside = way
+                else:
                     stepped.append(r)
             fitting = turn_rules.refused_for_fit([r for _, r in ran])
             for _, r in ran:  # a tool error's hint is for the model: never read out
@@ -279,8 +282,10 @@ class Assistant:
                 messages.append(ChatMessage("user", step_hint(left[0], False, first=False)))
             elif more:
                 # a compound request: the small model tends to answer after the first call, so it
-                # is told which of the things the user asked comes next
+                # is told which of the things the user asked comes next (after a look-up on the
+                # way to it, offered only the actions it names: told alone, it looked up again)
                 messages.append(next_step())
+                only = aside
         held_now = self.confirmations.held  # a call held this turn: its question is the last thing said
         if held_now is not None and not any(held_now.question in r for r in replies):
             await say(held_now.question, metrics, emit)

@@ -38,12 +38,16 @@ def done(outcomes: Sequence[ToolReturned], passed: int = 0) -> int:
     return len(ran_calls(outcomes)) + passed
 
 
-def on_the_way(outcome: ToolReturned, read_only: Collection[str], lookups: Sequence[bool], due: int) -> bool:
-    """A look-up that ran while the thing asked next is an action ("get yourself into the living
-    room, then …": the model looked up its pose first): it does not do that thing, so it does
-    not count as a step done (it had, and the turn moved on to the projector, the drive never made)."""
-    return (outcome.name in read_only and outcome.error != NOT_REQUESTED and due < len(lookups)
-            and not lookups[due])
+def on_the_way(outcome: ToolReturned, read_only: Collection[str], asked: Sequence[str], lookups: Sequence[bool],
+               due: int, specs: Sequence[ToolSpec]) -> list[str]:
+    """A look-up that ran while the thing asked next names a value an action lists ("get
+    yourself into the living room, then …": the model looked up its pose first) does not do
+    that thing: it had counted as the step done, and the turn moved on to the projector, the
+    drive never made. The actions that thing names (then offered alone, as `unacted`'s), or
+    none: the look-up counts as a step ("check your battery and go to the hallway")."""
+    if outcome.name not in read_only or outcome.error == NOT_REQUESTED or due >= len(asked) or lookups[due]:
+        return []
+    return naming(asked[due], specs)
 
 
 def asked_left(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: int = 0) -> bool:
@@ -65,18 +69,22 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
     Not a look-up asked for ("tell me about the kitchen"), nor a request said as a question
     ("can you fit through the front door, do you reckon?"): where the reading takes a question
     for a request, the model's own answer is the second check, and pushing it would act."""
-    actions = [s for s in specs if not s.read_only]
-    if not calls or {c.name for c in calls} & {s.name for s in actions}:
+    if not calls or {c.name for c in calls} & {s.name for s in specs if not s.read_only}:
         return None
     for step, lookup in zip(asked, lookups, strict=True):
-        if lookup or asked_as_question(step):
-            continue
-        heard = words(step)
-        naming = [s.name for s in actions if any(
-            named_whole(value, s.description, heard) for values in listed(s.parameters).values() for value in values)]
-        if naming:
-            return step, naming
+        if not lookup and (acts := naming(step, specs)):
+            return step, acts
     return None
+
+
+def naming(step: str, specs: Sequence[ToolSpec]) -> list[str]:
+    """The actions that list, as an argument's value, something the step names whole ("the
+    hallway": navigate_to); none for a step said as a question (see `unacted`)."""
+    if asked_as_question(step):
+        return []
+    heard = words(step)
+    return [s.name for s in specs if not s.read_only and any(
+        named_whole(value, s.description, heard) for values in listed(s.parameters).values() for value in values)]
 
 
 def refit(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: int, fitting: Collection[str]) -> bool:
