@@ -56,10 +56,14 @@ def _stems(text: str) -> list[str]:
     return [stem(w) for w in words(text)]
 
 
-def _says(clause: Sequence[str], phrase: Sequence[str]) -> bool:
-    """The clause's stems contain the phrase's, in order and next to each other."""
+def _at(clause: Sequence[str], phrase: Sequence[str]) -> list[int]:
+    """Where the clause's stems contain the phrase's, in order and next to each other."""
     n = len(phrase)
-    return n > 0 and any(list(clause[i:i + n]) == list(phrase) for i in range(len(clause) - n + 1))
+    return [i for i in range(len(clause) - n + 1) if list(clause[i:i + n]) == list(phrase)] if n else []
+
+
+def _says(clause: Sequence[str], phrase: Sequence[str]) -> bool:
+    return bool(_at(clause, phrase))
 
 
 def subject_words(name: str) -> set[str]:
@@ -116,7 +120,7 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     if any(isinstance(value, str) for value in arguments.values()):
         aimed = set()  # a place or a person says what it acts on
     for clause in _request_stems(intent, said):
-        if not any(_says(clause, phrase) and not _aimed_elsewhere(clause, phrase, aimed) for phrase in phrases):
+        if not any(_says_for_it(clause, phrase, aimed) for phrase in phrases):
             continue
         if any(_opens(clause, p) for p in others) and not any(_opens(clause, p) for p in phrases):
             continue
@@ -127,21 +131,17 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
 _DETERMINERS = frozenset(stem(w) for w in ("the", "that", "this", "your", "my", "a", "an"))
 
 
-def _aimed_elsewhere(clause: Sequence[str], phrase: Sequence[str], aimed: Collection[str]) -> bool:
-    """Each time the clause says the phrase, what follows it (after a "the", a "that") names
-    something in `aimed`: "stop the call", "plug the projector in", "stop the project" (a
-    misheard "pop the projector on")."""
-    n = len(phrase)
-    found = [i for i in range(len(clause) - n + 1) if list(clause[i:i + n]) == list(phrase)]
-    if not aimed or not found:
-        return False
-    for i in found:
-        j = i + n
+def _says_for_it(clause: Sequence[str], phrase: Sequence[str], aimed: Collection[str]) -> bool:
+    """The clause says the phrase at least once not right before (after a "the", a "that") a
+    word naming something in `aimed`: "stop the call", "plug the projector in", "stop the
+    project" (a misheard "pop the projector on") say it only for another tool."""
+    for i in _at(clause, phrase):
+        j = i + len(phrase)
         while j < len(clause) and clause[j] in _DETERMINERS:
             j += 1
         if j >= len(clause) or not _names(clause[j], aimed):
-            return False
-    return True
+            return True
+    return False
 
 
 def _opens(clause: Sequence[str], phrase: Sequence[str]) -> bool:

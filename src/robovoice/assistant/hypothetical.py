@@ -45,8 +45,7 @@ def asks_ever(clause: str, utterance: str) -> bool:
     ("would you ever go down to the kitchen and have a look for me, love?"): it asks."""
     start = utterance.find(clause)
     sentence = re.split(r"[.?!]", utterance[start:], maxsplit=1)[0] if start >= 0 else clause
-    return bool(re.match(r"would you ever\b", FILLER.sub("", clause.strip()), re.IGNORECASE)) and bool(
-        _WOULD_YOU_EVER.match(FILLER.sub("", sentence.strip()).lower()))
+    return bool(_WOULD_YOU_EVER.match(FILLER.sub("", sentence.strip())))  # the sentence opens with the clause
 
 
 def asks_ability(text: str) -> bool:
