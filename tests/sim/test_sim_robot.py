@@ -13,6 +13,7 @@ from robovoice.errors import ConfigError, NodeUnavailableError
 from robovoice.middleware.base import ActionHandler, NodeHost, NodeInfo, RpcHandler
 from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim import NODE_NAMES, SETUP_NAMES, SimRobot, run_sim_forever, start_sim_robot
+from robovoice.sim.robot import SETUP_CRAWL_MPS
 
 from .sim_testkit import BOUND_S, StartRobot
 
@@ -72,6 +73,32 @@ async def test_setups(bus: MemoryMiddleware, start: StartRobot) -> None:
     assert robot.state == state
 
 
+async def test_setup_drive_crawls_until_a_drive_is_asked_for(bus: MemoryMiddleware) -> None:
+    # at 40x a drive at cruise speed reaches the farthest place in well under a second; the setup
+    # drive must still be under way when a slow model answers, and a real request drives at cruise
+    robot = await start_sim_robot(bus, speed=40)
+    try:
+        await robot.apply_setup("driving")
+        assert robot.state.max_speed_mps == SETUP_CRAWL_MPS
+        await asyncio.sleep(1.0)
+        assert robot.state.moving and robot.state.driving_target == "front door"
+        asked = asyncio.create_task(bus.run_action("navigation", "drive_to", {"target": "kitchen"},
+                                                   on_feedback=_ignore, timeout=BOUND_S))
+        for _ in range(100):
+            if robot.state.driving_target == "kitchen":
+                break
+            await asyncio.sleep(0.02)
+        assert robot.state.driving_target == "kitchen" and robot.state.max_speed_mps == 0.5
+        result = await asyncio.wait_for(asked, BOUND_S)
+        assert result["target"] == "kitchen"
+        await robot.apply_setup("driving")
+        await bus.call("base", "set_max_speed", {"mps": 0.3}, timeout=1)  # a change made meanwhile stays
+        await robot.reset()
+        assert robot.state.max_speed_mps == 0.3
+    finally:
+        await robot.stop()
+
+
 async def test_setup_in_call_replaces_another_call(bus: MemoryMiddleware, start: StartRobot) -> None:
     robot = await start(nodes=["communication"])
     await bus.call("communication", "start_call", {"contact": "Ben"}, timeout=1)
@@ -105,6 +132,10 @@ async def test_run_sim_forever_until_cancelled(bus: MemoryMiddleware) -> None:
     with pytest.raises(asyncio.CancelledError):
         await task
     assert bus.nodes() == {}
+
+
+async def _ignore(feedback: object) -> None:
+    pass
 
 
 def _rate(stamps: list[float]) -> float:
