@@ -68,6 +68,9 @@ def test_requests_ask_for_action(text: str) -> None:
     ("Anna phoned me on Sunday.", ClauseKind.STATEMENT),
     ("The kitchen floor is wet.", ClauseKind.STATEMENT),
     ("Stay where you are.", ClauseKind.STATEMENT),
+    ("Do the lights work in the kitchen?", ClauseKind.QUESTION),
+    ("Please, do you know where the kitchen is?", ClauseKind.QUESTION),
+    ("Ben went off back to his flat.", ClauseKind.STATEMENT),
     ("Leave the video call alone, I'm still talking to Ben.", ClauseKind.NEGATED),
     ("Just leave the projector be, thanks.", ClauseKind.NEGATED),
     ("Can you drive over to?", ClauseKind.UNFINISHED),  # cut off: the model would pick a place
@@ -215,6 +218,9 @@ def test_courtesy_around_a_request_and_an_only_after_step() -> None:
     # ... but what it is for does not make another request the same one
     ("Ring Clara for me, and then put the projector on so I can see her properly.",
      ("Ring Clara for me", "put the projector on so I can see her properly")),
+    # "please do …" asks, though "do" opens questions; a verb no list has, then "off (back) to the"
+    ("It's late, no? Please do a call to Anna now.", ("Please do a call to Anna now",)),
+    ("Whizz off back to the kitchen, pet.", ("Whizz off back to the kitchen",)),
 ])
 def test_more_everyday_ways_of_asking_and_correcting(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps

@@ -43,9 +43,11 @@ from robovoice.assistant.hypothetical import (
 from robovoice.assistant.lexicon import (
     ASKING_VERBS,
     FILLER,
+    IMPERATIVE_SHAPE,
     IMPERATIVES,
     LATER,
     LATER_ONLY,
+    NOT_A_VERB,
     NOT_NAMES,
     NOT_THAT,
     OWN_PLAN,
@@ -102,19 +104,6 @@ _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|p
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
-# An imperative's shape around a verb no list has ("trundle over to the door", "wheel yourself
-# in", "crank up the projector"): a bare first word, then "yourself", a way to a place, or up/on/
-# off a thing. Not a pronoun, a past tense, a gerund or a plural ("went over to", "lights on the").
-_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|over|along|across|back|down|up|round|around|through|out|ben) )"
-                    r"{0,2}(?:to|into|towards?|by|tae|intae|ben) (?:the|my|your)\b|(?:up|on|off) (?:the|my|your) "
-                    r"|(?:the|my|your) \w+ (?:on|off)\b)")  # "whack the projector on"
-# (a gerund's "-ing" is not that of "swing", "bring", "ring")
-_NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
-                         r"our|their|someone|somebody|nobody|everyone|went|came|ran|drove|got|took|rode|fell|sat|"
-                         r"stood|left|is|are|was|were|am|be|been|has|have|had|do|does|did|can|could|would|will|"
-                         r"should|shall|may|might|must|(?!(?:sw|br|r|s|fl|sl|st|wr|str)ing$)\w+(?:ed|ing|[^s]s))$")
-
-
 # An utterance whose last request ends on a word that needs one after it was cut off
 # (speech-to-text keeps what was said: "please switch the…", "can you drive over to?"); the
 # model would fill in the rest. A preposition may end a finished request whose object came
@@ -149,11 +138,12 @@ def classify(clause: str) -> ClauseKind:
     if _POLITE.search(lowered):
         return ClauseKind.REQUEST
     first = words(lowered)[0]
-    if first == "do" and len(words(lowered)) > 1 and words(lowered)[1] in IMPERATIVES:
-        return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"
+    if first == "do" and ((len(words(lowered)) > 1 and words(lowered)[1] in IMPERATIVES)
+                          or re.search(r"\b(?:please|kindly)\W*$", clause[: clause.lower().rfind(lowered)], re.I)):
+        return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
-    if first in IMPERATIVES or ((shape := _SHAPE.match(lowered)) and not _NOT_A_VERB.match(shape.group(1))):
+    if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
         return ClauseKind.REQUEST
     if _LOOK.match(text):
         return ClauseKind.REQUEST

@@ -82,6 +82,19 @@ def base_form(participle: str) -> str:
     return word.removesuffix("ed")
 
 
+# An imperative's shape around a verb no list has ("trundle over to the door", "shoot off back to
+# your charger", "wheel yourself in", "crank up the projector", "whack the projector on"): a bare
+# first word, then "yourself", a way to a place, or up/on/off a thing. Not a pronoun, a past
+# tense, a gerund or a plural ("went over to", "lights on the").
+IMPERATIVE_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|off|over|along|across|back|down|up|round|around|"
+                              r"through|out|ben) ){0,2}(?:to|into|towards?|by|tae|intae|ben) (?:the|my|your)\b|"
+                              r"(?:up|on|off) (?:the|my|your) |(?:the|my|your) \w+ (?:on|off)\b)")
+# (a gerund's "-ing" is not that of "swing", "bring", "ring")
+NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
+                        r"our|their|someone|somebody|nobody|everyone|went|came|ran|drove|got|took|rode|fell|sat|"
+                        r"stood|left|is|are|was|were|am|be|been|has|have|had|do|does|did|can|could|would|will|"
+                        r"should|shall|may|might|must|(?!(?:sw|br|r|s|fl|sl|st|wr|str)ing$)\w+(?:ed|ing|[^s]s))$")
+
 # A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
 WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
                         r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
