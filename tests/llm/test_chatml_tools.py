@@ -9,6 +9,7 @@ from robovoice.llm.base import AudioPart, ChatMessage, ToolCall, ToolSpec
 from robovoice.llm.chatml_tools import (
     Head,
     head_grammar,
+    listed_tools,
     next_call_grammar,
     parse_head,
     render_prompt,
@@ -56,6 +57,19 @@ def test_tool_calls_and_results_are_rendered(tools: list[ToolSpec]) -> None:
     assert '<tool_response>\nfunctions.stop_robot returned:\n{"stopped": true}\n</tool_response>' in prompt
     assert "functions.set_projector_power returned:" in prompt
     assert "<|im_start|>assistant\nmessage:\nDone.<|im_end|>" in prompt
+
+
+def test_a_step_offering_fewer_tools_lists_all_that_warm_up_evaluated(tools: list[ToolSpec]) -> None:
+    system = ChatMessage("system", "Be brief.")
+    messages = [system, ChatMessage("user", "Go to the kitchen")]
+    kept = ("Be brief.", tools)
+    assert listed_tools(messages, tools[1:], kept) == tools  # the prefix stays; the grammar narrows
+    assert listed_tools(messages, [], kept) == tools
+    assert render_prompt(messages, listed_tools(messages, tools[:1], kept)) == render_prompt(messages, tools)
+    other = ToolSpec("open_door", "Open the door")
+    assert listed_tools(messages, [other], kept) == [other]  # not among them: the offered ones
+    assert listed_tools([ChatMessage("system", "Other."), messages[1]], tools[1:], kept) == tools[1:]
+    assert listed_tools(messages, tools[1:], None) == tools[1:]
 
 
 def test_without_tools_it_is_plain_chatml() -> None:

@@ -106,6 +106,21 @@ async def test_warm_up_evaluates_the_prefix_once(local: LocalLlamaBackend, tools
     assert local.last_turn.cached_prompt_tokens >= stats.prompt_tokens
 
 
+async def test_a_step_offering_fewer_tools_keeps_the_evaluated_prefix(
+    local: LocalLlamaBackend, tools: list[ToolSpec]
+) -> None:
+    # the assistant's loop offers only look-ups on some steps and no tools on its last: the
+    # prompt still lists every tool warm_up evaluated, and only the grammar narrows the choice
+    await local.reset_cache()
+    stats = await local.warm_up(SYSTEM.text, tools)
+    events = await turn(local, "Please drive to the kitchen", [t for t in tools if t.name != "navigate_to"])
+    assert all(call.name != "navigate_to" for call in calls(events))
+    assert local.last_turn.cached_prompt_tokens >= stats.prompt_tokens
+    events = await turn(local, "What is your name?", [])
+    assert "".join(e.text for e in events if isinstance(e, TextDelta)).strip()
+    assert local.last_turn.cached_prompt_tokens >= stats.prompt_tokens
+
+
 async def test_a_tool_result_is_read_and_answered(local: LocalLlamaBackend, tools: list[ToolSpec]) -> None:
     history = [
         SYSTEM,

@@ -70,6 +70,18 @@ def render_system(system_text: str, tools: Sequence[ToolSpec]) -> str:
     return _block("system", system_text + tools_section(tools))
 
 
+def listed_tools(messages: Sequence[ChatMessage], offered: Sequence[ToolSpec],
+                 kept: tuple[str, Sequence[ToolSpec]] | None) -> Sequence[ToolSpec]:
+    """The tools a turn's prompt lists. `kept` is the system text and tools `warm_up` evaluated:
+    when the turn has that system text and offers some of those tools (or none), the prompt lists
+    them all, so a step offering fewer keeps the evaluated prefix and only the grammar narrows
+    the choice. Listing the offered ones alone changed the system block: on 2 cores the whole
+    prompt (~1,250 tokens, ~35 s on the slower VM) was evaluated again for that step and the next."""
+    if kept is None or not messages or messages[0].role != "system" or messages[0].text != kept[0]:
+        return offered
+    return kept[1] if all(tool in kept[1] for tool in offered) else offered
+
+
 def render_prompt(messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> str:
     """The whole prompt, ending with the open assistant turn."""
     if any(m.has_audio for m in messages):

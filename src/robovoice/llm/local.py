@@ -127,6 +127,7 @@ class LocalLlamaBackend(SpeculativePrefill):
         self._streams = 0
         self._grammars: dict[str, Any] = {}
         self._head_ids: dict[tuple[str, ...], tuple[list[int], list[int]]] = {}
+        self._kept: tuple[str, tuple[ToolSpec, ...]] | None = None  # what warm_up evaluated
 
     def __repr__(self) -> str:
         return f"LocalLlamaBackend({str(self.model_path or 'default model')!r}, n_threads={self.n_threads})"
@@ -263,9 +264,10 @@ class LocalLlamaBackend(SpeculativePrefill):
         self, turn: Turn, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]
     ) -> Iterator[LLMEvent]:
         self._load_blocking()
-        prompt = fmt.render_prompt(messages, tools)
-        if not tools:
-            yield from self._stream_text(turn, prompt)
+        listed = fmt.listed_tools(messages, tools, self._kept)
+        prompt = fmt.render_prompt(messages, listed)
+        if not tools:  # with tools listed but none offered, the head is a message's
+            yield from self._stream_text(turn, prompt + (fmt.MESSAGE_HEAD + "\n" if listed else ""), listed)
             return
         decided = self._decide_head(turn, prompt, tools, bias_for(messages, self.tool_bias)).head
         if decided.tool is None:  # "message" (or, never under the grammar, nothing)
@@ -347,6 +349,7 @@ class LocalLlamaBackend(SpeculativePrefill):
         turns with this system prompt and these tools start from it. Call again when they change."""
         await self._settle()
         prefix = fmt.render_system(system_prompt, tools)
+        self._kept = (system_prompt, tuple(tools))
         loop = asyncio.get_running_loop()
         return await loop.run_in_executor(self._executor, self._warm_up_blocking, prefix)
 
