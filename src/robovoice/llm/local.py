@@ -265,7 +265,7 @@ class LocalLlamaBackend(SpeculativePrefill):
     ) -> Iterator[LLMEvent]:
         self._load_blocking()
         listed = fmt.listed_tools(messages, tools, self._kept)
-        prompt = fmt.render_prompt(messages, listed)
+        prompt = self._prompt(messages, tools)  # every kept tool listed; the grammar offers `tools`
         if not tools:  # with tools listed but none offered, the head is a message's
             yield from self._stream_text(turn, prompt + (fmt.MESSAGE_HEAD + "\n" if listed else ""), listed)
             return
@@ -360,7 +360,7 @@ class LocalLlamaBackend(SpeculativePrefill):
         if not tools:
             raise ValueError("a head decision needs tools")
         await self._settle()
-        prompt = fmt.render_prompt(messages, tools)
+        prompt = self._prompt(messages, tools)
 
         def decide() -> HeadDecision:
             self._load_blocking()

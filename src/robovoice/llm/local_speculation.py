@@ -97,6 +97,7 @@ class SpeculativePrefill:
     _pending: asyncio.Future[None] | None
     _speculation: Speculation | None = None
     _streams: int = 0  # real turns streaming now
+    _kept: tuple[str, tuple[ToolSpec, ...]] | None  # what warm_up evaluated (`fmt.listed_tools`)
 
     # -- provided by the backend -----------------------------------------------------------
 
@@ -112,7 +113,11 @@ class SpeculativePrefill:
     # ---------------------------------------------------------------------------------------
 
     def _speculation_key(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> str:
-        return f"{bias_for(messages, self.tool_bias)!r}\n{fmt.render_prompt(messages, tools)}"
+        return f"{bias_for(messages, self.tool_bias)!r}\n{self._prompt(messages, tools)}"
+
+    def _prompt(self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec]) -> str:
+        """The prompt a real turn renders (every kept tool listed, `fmt.listed_tools`)."""
+        return fmt.render_prompt(messages, fmt.listed_tools(messages, tools, self._kept))
 
     async def prefill(
         self, messages: Sequence[ChatMessage], tools: Sequence[ToolSpec], *, decode: bool = True
@@ -128,7 +133,7 @@ class SpeculativePrefill:
             if spec is not None:
                 spec.stop.set()
             spec = self._speculation = Speculation(key, threading.Event())
-            prompt, bias = fmt.render_prompt(messages, tools), bias_for(messages, self.tool_bias)
+            prompt, bias = self._prompt(messages, tools), bias_for(messages, self.tool_bias)
             spec.future = asyncio.get_running_loop().run_in_executor(
                 self._executor, self._speculate_blocking, spec, prompt, list(tools), bias, decode
             )
