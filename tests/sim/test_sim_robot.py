@@ -15,7 +15,7 @@ from robovoice.middleware.memory import MemoryMiddleware
 from robovoice.sim import NODE_NAMES, SETUP_NAMES, SimRobot, run_sim_forever, start_sim_robot
 from robovoice.sim.robot import SETUP_CRAWL_MPS
 
-from .sim_testkit import BOUND_S, StartRobot
+from .sim_testkit import BOUND_S, FeedbackLog, StartRobot
 
 
 async def test_all_nodes_or_the_named_ones(bus: MemoryMiddleware, start: StartRobot) -> None:
@@ -82,10 +82,12 @@ async def test_setup_drive_crawls_until_a_drive_is_asked_for(bus: MemoryMiddlewa
         assert robot.state.max_speed_mps == SETUP_CRAWL_MPS
         await asyncio.sleep(1.0)
         assert robot.state.moving and robot.state.driving_target == "front door"
+        feedback = FeedbackLog()
         asked = asyncio.create_task(bus.run_action("navigation", "drive_to", {"target": "kitchen"},
-                                                   on_feedback=_ignore, timeout=BOUND_S))
+                                                   on_feedback=feedback, timeout=BOUND_S))
+        await feedback.wait_for(bool)  # under way; the preempted setup drive's end gives the speed back
         for _ in range(100):
-            if robot.state.driving_target == "kitchen":
+            if robot.state.max_speed_mps != SETUP_CRAWL_MPS:
                 break
             await asyncio.sleep(0.02)
         assert robot.state.driving_target == "kitchen" and robot.state.max_speed_mps == 0.5
@@ -132,10 +134,6 @@ async def test_run_sim_forever_until_cancelled(bus: MemoryMiddleware) -> None:
     with pytest.raises(asyncio.CancelledError):
         await task
     assert bus.nodes() == {}
-
-
-async def _ignore(feedback: object) -> None:
-    pass
 
 
 def _rate(stamps: list[float]) -> float:

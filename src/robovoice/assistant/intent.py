@@ -122,7 +122,9 @@ def _unfinished(clause: str) -> bool:
 
 
 def classify(clause: str) -> ClauseKind:
-    text = FILLER.sub("", clause.strip()).strip()
+    opening = FILLER.match(clause.strip())  # what is said before a request without changing it
+    said_first = opening.group(0) if opening else ""
+    text = clause.strip()[len(said_first):].strip()
     lowered = text.lower()
     if not text:
         return ClauseKind.STATEMENT
@@ -139,7 +141,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST
     first = words(lowered)[0]
     if first == "do" and ((len(words(lowered)) > 1 and words(lowered)[1] in IMPERATIVES)
-                          or re.search(r"\b(?:please|kindly)\W*$", clause[: clause.lower().rfind(lowered)], re.I)):
+                          or re.search(r"\b(?:please|kindly)\W*$", said_first, re.I)):
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
