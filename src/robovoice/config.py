@@ -228,6 +228,10 @@ class VoiceConfig(_Frozen):
     # 0.6, not openWakeWord's 0.5: the highest of 8 offsets raises talk without the phrase to
     # 0.49 (45 min, docs/voice.md "Wake word at every offset"); wake phrases score over 0.7 or under 0.5
     wake_threshold: float = Field(default=0.6, gt=0, lt=1)
+    # a score from this up to wake_threshold wakes the robot only if the transcript names it
+    # exactly ("Jarvis", not "Travis"): espeak-ng voices in noise that the model scores 0.1-0.5
+    # (docs/voice.md "Unsure wake words"); 0 turns it off
+    wake_unsure_threshold: float = Field(default=0.1, ge=0, lt=1)
     # 10 ms offsets the wake word is scored at (audio.wake.OpenWakeWordDetector): 8 catches a
     # borderline voice wherever the microphone's frames start; 1 is openWakeWord's own
     wake_phases: Literal[1, 2, 4, 8] = 8
@@ -293,6 +297,13 @@ class VoiceConfig(_Frozen):
             raise ValueError(f"{info.field_name} = {value}: give a mean token log-probability from -10 up to "
                              f"(not including) 0 (default {default}; lower {lower}), or set {switch} = false")
         return value
+
+    @model_validator(mode="after")
+    def _unsure_is_lower(self) -> VoiceConfig:
+        if self.wake_unsure_threshold >= self.wake_threshold:
+            raise ValueError(f"wake_unsure_threshold = {self.wake_unsure_threshold} is not under wake_threshold = "
+                             f"{self.wake_threshold}: give a lower one (default 0.1), or 0 to turn it off")
+        return self
 
     @model_validator(mode="after")
     def _early_end_is_shorter(self) -> VoiceConfig:

@@ -107,3 +107,51 @@ def test_spotter_refuses_audio_that_is_not_16k_mono() -> None:
     spotter = WakeWordSpotter(ScriptedWakeDetector())
     with pytest.raises(AudioError, match="16 kHz mono"):
         spotter.feed(AudioChunk(np.zeros(100, np.int16), AudioFormat(48000)))
+
+
+# --- unsure detections (a score under the threshold, checked later against the transcript) ---
+
+
+def unsure(threshold: float = 0.6, floor: float = 0.1) -> WakeDecider:
+    return WakeDecider(WakeDeciderConfig(threshold=threshold, unsure_threshold=floor))
+
+
+def test_a_run_under_the_threshold_is_reported_unsure_when_it_ends_with_its_first_frames_time() -> None:
+    events = run(unsure(), [0.0, 0.05, 0.2, 0.43, 0.3, 0.05, 0.0])
+    assert len(events) == 1
+    assert not events[0].sure
+    assert events[0].score == pytest.approx(0.43)  # the run's peak
+    assert events[0].timestamp == pytest.approx(3 * FRAME)  # its first frame over the floor
+
+
+def test_a_run_that_reaches_the_threshold_is_one_sure_detection() -> None:
+    events = run(unsure(), [0.2, 0.4, 0.9, 0.5, 0.2, 0.05, 0.0])
+    assert [(e.sure, e.score) for e in events] == [(True, 0.9)]  # the rising edge and tail are not reported
+
+
+def test_no_unsure_detections_without_a_floor_or_while_the_threshold_is_raised() -> None:
+    assert run(WakeDecider(), [0.2, 0.5, 0.3, 0.0]) == []
+    d = unsure()
+    d.set_threshold(0.7)  # the robot is speaking
+    assert run(d, [0.2, 0.5, 0.3, 0.0]) == []
+    d.set_threshold(None)
+    assert [e.sure for e in run(d, [0.2, 0.5, 0.3, 0.0], t0=5.0)] == [False]
+
+
+def test_the_floor_must_be_under_the_threshold() -> None:
+    with pytest.raises(ConfigError, match="under the wake threshold"):
+        WakeDeciderConfig(threshold=0.6, unsure_threshold=0.6)
+
+
+def test_the_spotter_holds_off_the_other_offsets_only_for_a_sure_detection() -> None:
+    class Holding(ScriptedWakeDetector):
+        held = 0
+
+        def hold_off(self, seconds: float) -> None:
+            self.held += 1
+
+    detector = Holding([0.3, 0.0, 0.0, 0.9, 0.0])
+    spotter = WakeWordSpotter(detector, unsure())
+    events = spotter.feed(AudioChunk(np.zeros(1280 * 5, dtype=np.int16), MODEL_FORMAT, 0.0))
+    assert [e.sure for e in events] == [False, True]
+    assert detector.held == 1

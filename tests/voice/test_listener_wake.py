@@ -21,7 +21,8 @@ PLAYBACK = (1.0, 1.5)  # the robot's sentence sounds from 1.0 s to 1.5 s
 TAIL_S = 0.3
 
 
-def listen(playback: AudioChunk, fires_at: float, until: float = 3.2) -> tuple[list[HeardWake], dict[float, float]]:
+def listen(playback: AudioChunk, fires_at: float, until: float = 3.2,
+           score: float = 0.99) -> tuple[list[HeardWake], dict[float, float]]:
     """A silent room where the microphone's wake detector fires on the frame ending at
     `fires_at` (a detector's latency after the phrase) while `playback` played over `PLAYBACK`;
     the wakes heard, and the wake threshold in force after each frame (by its end time)."""
@@ -29,7 +30,7 @@ def listen(playback: AudioChunk, fires_at: float, until: float = 3.2) -> tuple[l
     reference = PlaybackReference()
     reference.place(playback, PLAYBACK[0])
     fire_frame = round(fires_at / FRAME_S) - 1
-    mic_detector = ScriptedWakeDetector([0.0] * fire_frame + [0.99])
+    mic_detector = ScriptedWakeDetector([0.0] * fire_frame + [score])
     listener = Listener(WakeWordSpotter(mic_detector, WakeDecider(cfg.wake)),
                         SpeechSegmenter(EnergyVAD(), Endpointer(cfg.endpointer)), reference, cfg.echo,
                         playback_detector=ToneWakeDetector(), playback_tail_s=TAIL_S)
@@ -82,3 +83,11 @@ def test_a_wake_heard_a_frame_before_the_playback_says_it_waits_for_the_playback
     (person,), _ = listen(talk, fires_at=PLAYBACK[0] + 0.28)
     assert person.during_playback and person.near_end and person.at == wake.at
     assert PLAYBACK_MATCH_WAIT_S <= 2 * FRAME_S  # a person's barge-in waits at most two frames
+
+
+def test_an_unsure_score_counts_only_away_from_playback() -> None:
+    talk = tone(PLAYBACK[1] - PLAYBACK[0], hz=440.0)
+    assert listen(talk, fires_at=1.6, score=0.4)[0] == []  # the robot was speaking: no unsure wake
+    later = PLAYBACK[1] + TAIL_S + WAKE_WINDOW_S + 0.5
+    (wake,), _ = listen(talk, fires_at=round(later / FRAME_S) * FRAME_S, until=later + 0.5, score=0.4)
+    assert not wake.sure and not wake.during_playback and wake.near_end

@@ -95,6 +95,45 @@ async def test_a_near_miss_of_the_wake_phrase_calling_someone_else_does_nothing(
     assert not s.sim.state.moving and not s.log.of(VoiceTurnStarted)
 
 
+UNSURE = VoiceConfig(wake_threshold=0.995, wake_unsure_threshold=0.5)  # the fake wake tone scores 0.99: unsure
+
+
+@pytest.mark.parametrize(("heard", "acts"), [("Hey Jarvis, turn on the projector.", True),
+                                             ("Hey Travis, turn on the projector.", False)])
+async def test_an_unsure_wake_word_counts_only_when_the_transcript_names_the_robot(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend,
+    heard: str, acts: bool,
+) -> None:
+    """A wake score under the threshold (espeak-ng voices in noise score 0.1-0.5): the robot
+    acts if the words say "Jarvis", and takes "Hey Travis, ..." for talk to somebody else."""
+    server.push(ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),)))
+    transcriber.text = heard
+    async with voice_session(fakes, backend, speed=2.0, config=UNSURE) as s:
+        await s.say(wake_command())
+        if acts:
+            await s.log.wait_for(VoiceTurnFinished)
+        else:
+            ignored = await s.log.wait_for(UtteranceIgnored)
+            assert ignored.reason == "wake_unconfirmed" and ignored.text == heard
+        await s.settle()
+    assert [(e.sure, round(e.score, 2)) for e in s.log.of(WakeWordHeard)] == [(False, 0.99)]
+    assert s.sim.state.projector_on is acts
+    assert len(server.requests) == (1 if acts else 0)
+
+
+async def test_unsure_wake_words_are_off_with_a_zero_threshold(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    transcriber.text = "Hey Jarvis, turn on the projector."
+    off = UNSURE.model_copy(update={"wake_unsure_threshold": 0.0})
+    async with voice_session(fakes, backend, speed=2.0, config=off) as s:
+        await s.say(wake_command())
+        ignored = await s.log.wait_for(UtteranceIgnored)
+        await s.settle()
+    assert ignored.reason == "no_wake_word" and transcriber.calls == 0
+    assert s.log.of(WakeWordHeard) == [] and server.requests == []
+
+
 async def test_a_command_longer_than_the_wake_timeout_is_still_a_command(
     fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
 ) -> None:

@@ -10,7 +10,7 @@ from robovoice.voice.config import SpeechConfig, TurnTakingConfig
 from robovoice.voice.progress import ProgressNarrator
 from robovoice.voice.stop import is_stop_command
 from robovoice.voice.turns import Action, Phase, TurnTaking
-from robovoice.voice.utterance import OwnWords, addressed_elsewhere, strip_wake_words
+from robovoice.voice.utterance import OwnWords, addressed_elsewhere, names_robot, strip_wake_words
 
 from .voice_kit import sim_voice_roles
 
@@ -174,6 +174,34 @@ def test_wake_phrase_is_removed_from_the_transcript(heard: str, command: str) ->
 ])  # fmt: skip
 def test_a_transcript_calling_someone_else_by_name_is_addressed_elsewhere(heard: str, elsewhere: bool) -> None:
     assert addressed_elsewhere(heard) is elsewhere
+
+
+@pytest.mark.parametrize(("heard", "named"), [
+    ("Hey Jarvis, go to the kitchen.", True),
+    ("Hey, Jarvis. Turn the projector on.", True),
+    ("Jarvis, stop!", True),
+    ("The home team. Hey, Jarvis, go to the kitchen.", True),
+    ("Hey Travis, go to the kitchen, please.", False),  # a wake score of 0.48, and somebody else's name
+    ("Hey Jervis, go to the kitchen.", False),  # close is not enough for an unsure wake
+    ("Go to the kitchen.", False),
+    ("Right, off you go to the bedroom, and tell Jarvis.", False),  # the name after the command
+])  # fmt: skip
+def test_an_unsure_wake_needs_the_robots_name_spelt_out_at_the_start(heard: str, named: bool) -> None:
+    assert names_robot(heard) is named
+
+
+def test_an_unsure_wake_word_is_marked_and_does_not_replace_a_sure_one() -> None:
+    t = TurnTaking(_turns())
+    t.wake(1.0, sure=False)
+    verdict = t.classify(0.8, 3.0, moving=False)
+    assert verdict.action is Action.COMMAND and not verdict.wake_sure
+    t.wake(5.0)
+    t.wake(5.4, sure=False)  # the tail of the same phrase, or talk after it
+    verdict = t.classify(4.8, 7.0, moving=False)
+    assert verdict.wake_at == 5.0 and verdict.wake_sure
+    t.wake(9.0, sure=False)
+    t.rearm(9.5)  # the transcript named the robot and held nothing more: sure from now on
+    assert t.classify(10.0, 11.0, moving=False).wake_sure
 
 
 def test_own_words_are_recognised_for_a_while() -> None:

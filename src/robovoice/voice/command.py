@@ -42,6 +42,7 @@ from robovoice.voice.utterance import (
     Transcribing,
     Transcription,
     addressed_elsewhere,
+    names_robot,
     strip_wake_words,
     trim_to_wake,
     wav_bytes,
@@ -169,6 +170,10 @@ class CommandTurn:
                 heard, text, unsure = await self._transcribe(audio, utt, verdict, speculation)
                 raw = heard.text
                 await c.emit(TranscriptReady(text, metrics.stt_ms))
+                if not verdict.wake_sure and not names_robot(raw, c.config.wake_phrase):
+                    # an unsure wake word, and the words do not say the robot's name: talk
+                    await report_ignored(c.emit, c.stats, "wake_unconfirmed", utt, raw)
+                    return
                 if not re.search(r"[A-Za-z0-9]", text):
                     c.turns.rearm(utt.end)
                     await report_ignored(c.emit, c.stats, "wake_only" if verdict.wake_at is not None else "empty",

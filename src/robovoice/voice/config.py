@@ -146,7 +146,8 @@ class PipelineConfig:
         voice = voice if voice is not None else VoiceConfig()
         return cls(
             wake_phrase=voice.spoken_wake_phrase,
-            wake=WakeDeciderConfig(threshold=voice.wake_threshold),
+            wake=WakeDeciderConfig(threshold=voice.wake_threshold,
+                                   unsure_threshold=voice.wake_unsure_threshold or None),
             endpointer=EndpointerConfig(end_silence_s=voice.end_of_turn_silence_ms / 1000.0,
                                         max_utterance_s=voice.max_utterance_s),
             turns=TurnTakingConfig.from_config(voice),

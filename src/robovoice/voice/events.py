@@ -19,11 +19,13 @@ from robovoice.assistant.loop import TurnResult
 @dataclass(frozen=True, slots=True)
 class WakeWordHeard:
     """The wake phrase was heard at stream time `at` (s); `during_playback` when the robot
-    (or a call's remote participant) was speaking at the time."""
+    (or a call's remote participant) was speaking at the time. Not `sure`: a score under the
+    wake threshold, which wakes the robot only if the transcript names it."""
 
     score: float
     at: float
     during_playback: bool = False
+    sure: bool = True
 
 
 @dataclass(frozen=True, slots=True)

@@ -59,6 +59,7 @@ class HeardWake:
     during_playback: bool
     near_end: bool  # false: the robot's own playback, not the person
     playback_score: float = 0.0  # the playback's own wake score around `at`
+    sure: bool = True  # false: under the wake threshold; it counts only if the transcript names the robot
 
 
 @dataclass(frozen=True, slots=True)
@@ -265,6 +266,8 @@ class Listener:
         events: list[HeardEvent] = self._matched(t1)
         for wake in self.spotter.feed(cleaned):
             during = self._playing_during(wake.timestamp - WAKE_WINDOW_S, wake.timestamp)
+            if during and not wake.sure:
+                continue  # an unsure score around playback is as likely the robot's own voice
             near, own = True, 0.0
             if during:
                 own = self._playback_score(wake.timestamp)
@@ -275,7 +278,7 @@ class Listener:
                         continue
                 else:  # no detector on the playback: fall back on the echo levels
                     _, near = self.meter.judge(wake.timestamp - 1.0, wake.timestamp)
-            events.append(HeardWake(wake.score, wake.timestamp, during, near, own))
+            events.append(HeardWake(wake.score, wake.timestamp, during, near, own, wake.sure))
         self._remember(cleaned)
         for vad_event in self.segmenter.feed(cleaned):
             if isinstance(vad_event, SpeechStarted):

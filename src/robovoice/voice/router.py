@@ -6,7 +6,9 @@ model: it decides from what is known now (turn-taking state, `MotionWatch.moving
 answers at once) and hands anything slow to a task of the pipeline's TaskGroup (`Floor`).
 
 - wake word: heard during the robot's own playback -> rejected; while the robot is busy ->
-  barge-in (speech dropped, the active turn cancelled); then turn-taking is told;
+  barge-in (speech dropped, the active turn cancelled); then turn-taking is told. An unsure
+  wake word (a score under the threshold) is only passed on while the robot is idle and a
+  transcript will be made: the command turn checks that it names the robot;
 - speech starts or pauses: the motion watch is asked to refresh (for a stop without the
   wake word); at a pause of an utterance that will need it, transcription starts speculatively,
   and its transcript may shorten the end-of-turn silence and prefill the model
@@ -92,6 +94,10 @@ class Router:
         self.floor.changed.set()
 
     async def _on_wake(self, event: HeardWake) -> None:
+        if not event.sure and (self.stt is None or self.audio_native or self.floor.busy or self.speech.busy):
+            log.info("unsure wake word (%.2f) at %.2f s ignored: no transcript to check it, or the robot is busy",
+                     event.score, event.at)
+            return
         if not event.near_end:
             self.stats.rejected_wakes += 1
             log.info("wake word at %.2f s rejected: the robot's own playback", event.at)
@@ -102,8 +108,8 @@ class Router:
             cancelled = self.floor.cancel_active()
             self.speech.interrupt()
             await self.emit(BargedIn(event.at, cancelled))
-        self.turns.wake(event.at)
-        await self.emit(WakeWordHeard(event.score, event.at, event.during_playback))
+        self.turns.wake(event.at, sure=event.sure)
+        await self.emit(WakeWordHeard(event.score, event.at, event.during_playback, event.sure))
 
     def _on_pause(self, pause: HeardPause, received: float) -> None:
         """Start transcribing at the first pause of an utterance that will need it, so the

@@ -43,6 +43,7 @@ class Verdict:
     reason: str = ""
     wake_at: float | None = None  # the wake word that addressed this command
     follow_up: bool = False
+    wake_sure: bool = True  # false: an unsure wake word; the transcript must name the robot
 
 
 class TurnTaking:
@@ -51,6 +52,7 @@ class TurnTaking:
     def __init__(self, config: TurnTakingConfig) -> None:
         self.config = config
         self._wake_at: float | None = None  # the last wake word not yet used by a command
+        self._wake_sure = True
         self._turn_running = False
         self._playing_until: float | None = None  # stream time the current playback ends (or None)
         self._playing = False
@@ -59,9 +61,12 @@ class TurnTaking:
 
     # --- facts ---------------------------------------------------------------------------
 
-    def wake(self, at: float) -> None:
-        """The wake word was heard (and accepted) at `at`."""
-        self._wake_at = at
+    def wake(self, at: float, *, sure: bool = True) -> None:
+        """The wake word was heard (and accepted) at `at`; an unsure one does not replace a
+        sure one still waiting for its command."""
+        if not sure and self._wake_at is not None and self._wake_sure:
+            return
+        self._wake_at, self._wake_sure = at, sure
         self._follow_up_until = None
 
     def turn_started(self) -> None:
@@ -161,7 +166,7 @@ class TurnTaking:
         cfg = self.config
         if self._wake_for(start, end):
             wake, self._wake_at = self._wake_at, None
-            return Verdict(Action.COMMAND, "wake word", wake_at=wake)
+            return Verdict(Action.COMMAND, "wake word", wake_at=wake, wake_sure=self._wake_sure)
         if self._follow_up_for(start):
             self._follow_up_until = None
             return Verdict(Action.COMMAND, "follow-up", follow_up=True)
@@ -171,4 +176,4 @@ class TurnTaking:
 
     def rearm(self, at: float) -> None:
         """A command turned out to be the wake phrase alone: keep waiting for the command."""
-        self._wake_at = at
+        self._wake_at, self._wake_sure = at, True  # an unsure wake is named in its transcript by now

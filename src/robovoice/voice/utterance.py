@@ -87,6 +87,16 @@ def addressed_elsewhere(text: str, phrase: str = "hey jarvis") -> bool:
             and difflib.SequenceMatcher(None, words[1].lower(), name).ratio() < 0.6)
 
 
+def names_robot(text: str, phrase: str = "hey jarvis") -> bool:
+    """Whether a transcript opens with the wake phrase's name spelt exactly ("Hey Jarvis,",
+    "Jarvis,", after at most `WAKE_PREFIX_WORDS` other words): what an unsure wake word must
+    show before it counts. Stricter than `strip_wake_words`: "Hey Travis, go to the kitchen"
+    (a wake score of 0.48) is somebody else's name."""
+    name = re.findall(r"[a-z']+", phrase.lower())[-1:]
+    words = [w.lower() for w in re.findall(r"[A-Za-z']+", text)]
+    return bool(name) and name[0] in words[:len(phrase.split()) + WAKE_PREFIX_WORDS]
+
+
 def strip_wake_words(text: str, phrase: str = "hey jarvis") -> str:
     """Remove the wake phrase (and anything heard before it) from a transcript; the text
     after it is kept as said."""
