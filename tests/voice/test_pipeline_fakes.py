@@ -121,6 +121,21 @@ async def test_an_unsure_wake_word_counts_only_when_the_transcript_names_the_rob
     assert len(server.requests) == (1 if acts else 0)
 
 
+async def test_an_unsure_wake_word_while_moving_leaves_the_stop_to_the_stop_check(
+    fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
+) -> None:
+    """Audio test v14: an unsure wake made a stop while driving a command, whose transcript
+    did not name the robot, and the drive went on; now the stop check hears it."""
+    transcriber.text = "Stop right there!"
+    async with voice_session(fakes, backend, speed=2.0, sim_speed=2.0, setup="driving", config=UNSURE) as s:
+        assert s.sim.state.moving
+        await s.say(wake_command())
+        stopped = await s.log.wait_for(RobotStopped, timeout=10)
+        await s.settle()
+    assert stopped.ok and not s.sim.state.moving
+    assert s.log.of(WakeWordHeard) == [] and server.requests == []
+
+
 async def test_unsure_wake_words_are_off_with_a_zero_threshold(
     fakes: VoiceModels, transcriber: SettableTranscriber, server: FakeOpenAIServer, backend: OpenAICompatBackend
 ) -> None:
