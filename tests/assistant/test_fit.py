@@ -73,6 +73,17 @@ def test_a_tool_beside_a_request_for_another_does_not_fit(
     assert fitting_tools(intent, WORDS, tool) == meant
 
 
+@pytest.mark.parametrize(("text", "contact", "fit"), [
+    ("Tell Ben the plumber is coming.", "Ben", False),  # a message names him; nobody asked to ring him
+    ("Let Clara know the parcel came.", "Clara", False),
+    ("Say thanks to Anna from me, and hang up.", "Anna", False),
+    ("Tell Ben to ring me back, call him now.", "Ben", True),  # the call is asked for in its own words
+    ("Give Ben a ring and tell him tea's ready.", "Ben", True),
+])  # fmt: skip
+def test_a_message_for_somebody_does_not_ask_to_call_them(text: str, contact: str, fit: bool) -> None:
+    assert fits(read_request(text), "start_video_call", WORDS["start_video_call"], {"contact": contact}) is fit
+
+
 def test_a_word_said_only_inside_another_word_does_not_fit() -> None:
     assert not fits(read_request("Bring the blanket to the bedroom."), "start_video_call", WORDS["start_video_call"],
                     {"contact": "Ben"})

@@ -54,6 +54,10 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "The garage first, and then the garden.",
     "Swing by the garage on your way.",  # "swing" is no gerund
     "Away ben tae the garden, would you?",  # Scots: go through to
+    # nineteenth session (text v23): "ye", "youse" for you; "y'all" before an imperative
+    "Could ye nip out to the garden, pet?",
+    "Will youse put the telly on?",
+    "Y'all get on over to the garage.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -157,6 +161,8 @@ def test_conditions_courtesy_and_wishes(text: str, steps: tuple[str, ...], why: 
     ("Before you call Anna, go to the kitchen.", ("go to the kitchen", "call Anna")),
     ("First of all go to the kitchen, then ring Ben.", ("First of all go to the kitchen", "ring Ben")),
     ("Go to the bathroom first, then the hallway.", ("Go to the bathroom first", "the hallway")),  # already in order
+    # "once you've <done what was just asked>" only says the order (nineteenth session, text v23)
+    ("Halt, and after you've halted drive to the garage.", ("Halt", "drive to the garage")),
 ])
 def test_order_words_put_the_steps_in_the_order_to_do_them(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps

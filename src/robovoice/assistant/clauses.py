@@ -35,7 +35,17 @@ _APPOSITIVE = re.compile(r"\b((?:my|your|our) (?:" + "|".join(sorted(RELATIONS))
                          re.IGNORECASE)
 
 
+# "Could ye head through to the bathroom", "will youse ring Ben": you, as said in Ireland,
+# Scotland and the north of England (text test v23)
+_YOU = re.compile(r"\b(?:ye|youse|yous)\b", re.IGNORECASE)
+
+
+# "and after that call, Clara": speech-to-text's comma between a call and whom (audio test v14)
+_CALL_COMMA = re.compile(r"(?<!\bthe )(?<!\ba )(?<!\bvideo )\b((?i:call|ring|phone))\s*,\s+(?=[A-Z][a-z]+\b)")
+
+
 def split_clauses(text: str) -> list[str]:
-    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text.strip())))
+    text = _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip()))
+    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
     parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)]
     return [p for p in parts if p]

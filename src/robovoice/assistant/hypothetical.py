@@ -12,7 +12,7 @@ _ABILITY = re.compile(
     r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
     r"would you be able|(?:do|would|did) you know how|can robots|something you can|the kind of robot|"
     r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
-    r"by yourself|on your own|ever)\b"
+    r"by yourself|on your own|your own way|ever)\b"
     # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
     # have left?" asks about the robot's state
     r"|^(?:do you have|have you got)\b",

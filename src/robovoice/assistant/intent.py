@@ -212,7 +212,11 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         if kind is ClauseKind.REQUEST and _FIRST.search(part.strip()):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
-        if sequence := SEQUENCE.match(bare):
+        if (sequence := SEQUENCE.match(bare)) and (done := base_form(sequence.group(1))) and \
+                any(c.kind is ClauseKind.REQUEST and done in words(c.text) for c in clauses) and \
+                classify(rest := bare[sequence.end():]) is ClauseKind.REQUEST:
+            kind, part = ClauseKind.REQUEST, rest.strip()  # "stop, and once you've stopped go to …": the next step
+        elif sequence:
             # "once you've checked your battery, …": that first, said as the request it is ("check
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
             kind, part = ClauseKind.REQUEST, base_form(sequence.group(1)) + bare[sequence.end():]

@@ -18,7 +18,7 @@ FILLER = re.compile(
     r"^(?:(?:please|kindly|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|"
     r"firstly|next|finally|just|off you|i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
-    r"erm|er|um|hmm|what am i saying|what was i thinking|silly me)\b[\s,]*)+",
+    r"erm|er|um|hmm|what am i saying|what was i thinking|silly me|y'all)\b[\s,]*)+",
     re.IGNORECASE,
 )
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please)?|please|thanks|thank you|"
