@@ -20,8 +20,8 @@ from robovoice.audio.format import MODEL_FORMAT, AudioChunk
 from robovoice.audio.stt import WhisperTranscriber
 from robovoice.audio.wake import WAKE_FRAME_SAMPLES, OpenWakeWordDetector, WakeDecider
 from robovoice.audio.wav import read_wav
-from robovoice.voice.config import PipelineConfig
 from robovoice.voice.confidence_eval import sim_hint
+from robovoice.voice.config import PipelineConfig
 from robovoice.voice.utterance import WAKE_LOOKBACK_S, names_robot
 
 AFTER_S = 4.0
@@ -43,7 +43,8 @@ def main() -> int:
             event = decider.update(detector.process(samples[i:i + WAKE_FRAME_SAMPLES]), (i + WAKE_FRAME_SAMPLES) / rate)
             if event is None:
                 continue
-            lo, hi = max(0, round((event.timestamp - WAKE_LOOKBACK_S) * rate)), round((event.timestamp + AFTER_S) * rate)
+            lo = max(0, round((event.timestamp - WAKE_LOOKBACK_S) * rate))
+            hi = round((event.timestamp + AFTER_S) * rate)
             text = stt.transcribe(AudioChunk(samples[lo:hi], MODEL_FORMAT), hint).text
             row = {"file": path, "at": round(event.timestamp, 2), "score": round(event.score, 3), "sure": event.sure,
                    "names_robot": names_robot(text), "text": text}
