@@ -70,3 +70,18 @@ async def test_assist_processes_wav_files_in_one_conversation(tmp_path: Path) ->
 async def test_assist_rejects_missing_files(tmp_path: Path) -> None:
     code, out = await _robovoice("assist", "--robot", "sim", "--input", str(tmp_path / "nope.wav"))
     assert code == 1 and "no such WAV file" in out
+
+
+def test_the_transcript_printer_marks_an_unsure_wake_word() -> None:
+    import io
+
+    from robovoice.commands.voice import TranscriptPrinter
+    from robovoice.voice.events import WakeWordHeard
+
+    out = io.StringIO()
+    printer = TranscriptPrinter(out)
+    printer(WakeWordHeard(0.97, 1.0))
+    printer(WakeWordHeard(0.31, 5.0, sure=False))
+    sure, unsure = out.getvalue().splitlines()
+    assert sure.endswith("· wake word (0.97)")
+    assert unsure.endswith("· wake word (0.31, unsure: it counts if the words name the robot)")

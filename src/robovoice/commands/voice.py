@@ -107,8 +107,9 @@ class TranscriptPrinter:
         from robovoice.voice import events as v
 
         match event:
-            case v.WakeWordHeard(score=score, during_playback=during):
-                self.line(f"  · wake word ({score:.2f}){' while the robot spoke' if during else ''}")
+            case v.WakeWordHeard(score=score, during_playback=during, sure=sure):
+                unsure = "" if sure else ", unsure: it counts if the words name the robot"
+                self.line(f"  · wake word ({score:.2f}{unsure}){' while the robot spoke' if during else ''}")
             case v.WakeWordRejected():
                 self.line("  · wake phrase in the robot's own playback: ignored")
             case v.TranscriptReady(text=text, inference_ms=ms):

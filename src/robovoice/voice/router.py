@@ -96,8 +96,8 @@ class Router:
     async def _on_wake(self, event: HeardWake) -> None:
         if not event.sure and (self.stt is None or self.audio_native or self.floor.busy or self.speech.busy
                                or self.motion.moving):
-            # moving: a stop needs no wake word, and is checked with the stop words as hint only
-            # while it is not addressed (audio test v14's "stop right here" was heard as talk)
+            # moving: a stop needs no wake word, and is transcribed with the stop words as hint
+            # only while it is not addressed; an unsure wake would make it a command instead
             log.info("unsure wake word (%.2f) at %.2f s ignored: no transcript to check it, or the robot is busy",
                      event.score, event.at)
             return
