@@ -18,7 +18,7 @@ import json
 
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk
 from robovoice.audio.stt import WhisperTranscriber
-from robovoice.audio.wake import WAKE_FRAME_SAMPLES, OpenWakeWordDetector, WakeDecider
+from robovoice.audio.wake import OpenWakeWordDetector, WakeDecider, WakeWordSpotter
 from robovoice.audio.wav import read_wav
 from robovoice.voice.confidence_eval import sim_hint
 from robovoice.voice.config import PipelineConfig
@@ -38,11 +38,8 @@ def main() -> int:
         if audio.format != MODEL_FORMAT:
             parser.error(f"{path}: {audio.format}; give 16 kHz mono 16-bit audio")
         samples, rate = audio.samples, MODEL_FORMAT.rate
-        detector, decider = OpenWakeWordDetector(phases=8), WakeDecider(PipelineConfig.from_config().wake)
-        for i in range(0, len(samples) - WAKE_FRAME_SAMPLES + 1, WAKE_FRAME_SAMPLES):
-            event = decider.update(detector.process(samples[i:i + WAKE_FRAME_SAMPLES]), (i + WAKE_FRAME_SAMPLES) / rate)
-            if event is None:
-                continue
+        spotter = WakeWordSpotter(OpenWakeWordDetector(phases=8), WakeDecider(PipelineConfig.from_config().wake))
+        for event in spotter.feed(AudioChunk(samples, MODEL_FORMAT)):  # as the pipeline frames it
             lo = max(0, round((event.timestamp - WAKE_LOOKBACK_S) * rate))
             hi = round((event.timestamp + AFTER_S) * rate)
             text = stt.transcribe(AudioChunk(samples[lo:hi], MODEL_FORMAT), hint).text

@@ -119,7 +119,7 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     aimed = {stem(w) for w in elsewhere} - {stem(w) for w in subject_words(name)}
     if any(isinstance(value, str) for value in arguments.values()):
         aimed = set()  # a place or a person says what it acts on
-    acts = [[stem(w)] for w in subject_words(name)] + [_stems(phrase) for phrase in declared]
+    acts = vocabulary(name, declared, {})  # its own words: a message for somebody fits only through them
     for clause in _request_stems(intent, said):
         if not any(_says_for_it(clause, phrase, aimed) for phrase in (acts if _message(clause) else phrases)):
             continue
