@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from robovoice.assistant.fit import fits, fitting_tools, stem, unsaid
-from robovoice.assistant.gate import NOT_REQUESTED, OTHER, UNCLEAR, question, refusal
+from robovoice.assistant.gate import NOT_REQUESTED, OTHER, UNCLEAR, own_words, refusal
 from robovoice.assistant.intent import read_request
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.loader import load_manifest_dir
@@ -148,13 +148,27 @@ def test_the_gate_asks_rather_than_calls_someone_nobody_named() -> None:
     spec = SPECS["start_video_call"]
     body = refusal(read_request("Get car on a video call, please."), spec, {"contact": "Anna"}, (), VOICE)
     assert body is not None and body["details"]["reason"] == UNCLEAR and "ask them" in body["hint"]
-    assert question(body) == "Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
+    assert own_words(body) == "Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
     assert refusal(read_request("Get Clara on a video call, please."), spec, {"contact": "Clara"}, (), VOICE) is None
     there = refusal(read_request("Go over there."), SPECS["navigate_to"], {"target": "kitchen"}, (), VOICE)
-    assert there is not None and question(there) == ("Which one do you mean: kitchen, living room, bedroom, "
+    assert there is not None and own_words(there) == ("Which one do you mean: kitchen, living room, bedroom, "
                                                       "bathroom, hallway, front door or charging dock?")
     negated = refusal(read_request("Don't call Anna."), spec, {"contact": "Anna"}, (), VOICE)
-    assert negated is not None and question(negated) is None  # nothing to choose: it was declined
+    assert negated is not None and own_words(negated) is None  # nothing to choose: it was declined
+
+
+def test_an_ability_question_about_the_very_call_is_answered_yes_by_the_robot() -> None:
+    call, dock, drive = SPECS["start_video_call"], SPECS["return_to_dock"], SPECS["navigate_to"]
+    clara = refusal(read_request("Only curious - could you give Clara a ring?"), call, {"contact": "Clara"}, (), VOICE)
+    assert clara is not None and own_words(clara) == "Yes, I can do that when you ask me to."
+    charger = refusal(read_request("Are you able to get back on your charger alone?"), dock, {}, (), VOICE)
+    assert charger is not None and own_words(charger) == "Yes, I can do that when you ask me to."
+    # a contact nobody named, a place it never said, an "it" that is not what the call does: the model answers
+    for text, spec, args in [("Could you phone people who live abroad?", call, {"contact": "Anna"}),
+                             ("Could you make me a cup of tea?", drive, {"target": "kitchen"}),
+                             ("If Ben rings while I'm out, could you answer it?", call, {"contact": "Ben"})]:
+        body = refusal(read_request(text), spec, args, (), VOICE)
+        assert body is not None and body["details"]["reason"] == "ability" and own_words(body) is None, text
 
 
 def test_a_clause_that_opens_with_another_tools_words_does_not_fit_this_one() -> None:

@@ -35,11 +35,12 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
 ])
 async def test_after_a_refusal_the_model_never_claims_the_refused_action_done(worded: str, said: str) -> None:
     """A small model words the refused call as done ("The projector is now on."): a false claim
-    the person would believe. It is not said; what is true is."""
+    the person would believe. It is not said; what is true is. (A question that names the
+    projector, "are you able to switch on a projector?", gets the robot's own yes, unworded.)"""
     async with scripted_sim(
         [call("set_projector_power", on=True), TextReply(worded)]
     ) as (robot, _server, backend):
-        result = await Assistant(backend, robot.tools).turn("Are you able to switch on a projector?")
+        result = await Assistant(backend, robot.tools).turn("Are you able to show my holiday photos nice and big?")
         assert robot.sim is not None and not robot.sim.state.projector_on
     assert result.reply == said
 

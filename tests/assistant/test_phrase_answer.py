@@ -129,6 +129,13 @@ async def test_a_refused_call_gets_the_model_with_its_hint(tmp_path: Path) -> No
     assert len(server.requests) == 2 and result.reply == "That's nice to hear."
 
 
+async def test_an_ability_question_about_the_call_made_is_answered_by_the_robot(tmp_path: Path) -> None:
+    script: list[ScriptedReply] = [call("set_projector_power", on=True), TextReply("never asked for")]
+    (result,), server, _, _ = await run(tmp_path, script, "Just so I know, could you put the projector on yourself?")
+    assert result.outcomes[0].error == "not_requested" and len(server.requests) == 1
+    assert result.reply == "Yes, I can do that when you ask me to."
+
+
 def test_the_rule_reads_the_request_and_the_step() -> None:
     voice = {"navigate_to": VoiceDecl(say=VoicePhrases(success="I am at the {arrived} now.")),
              "get_battery_state": VoiceDecl(say=VoicePhrases(success="My battery is at {percent:.0f} percent."))}

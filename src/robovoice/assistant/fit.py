@@ -91,10 +91,13 @@ _COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|y
                        re.IGNORECASE)
 
 
-def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
-    requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
+def _request_stems(intent: Intent, said: Collection[str],
+                   kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,)) -> list[list[str]]:
+    requests = [c for c in intent.clauses if c.kind in kinds]
     clauses = [_stems(_COURTESY.sub("", c.text.strip())) for c in requests]
-    if any(_BACK_REFERENCE & set(words(c.text)) for c in requests):
+    # (an ability question's "it" is not looked up: "If Ben rings, could you answer it?" is
+    # not a question about ringing him, and the robot's "yes" must be to what it names)
+    if ClauseKind.REQUEST in kinds and any(_BACK_REFERENCE & set(words(c.text)) for c in requests):
         # "the thing that throws pictures on the wall... turn it off": what "it" is was said before
         clauses += [_stems(c.text) for c in intent.clauses]
     if intent.answering:
@@ -104,8 +107,8 @@ def _request_stems(intent: Intent, said: Collection[str]) -> list[list[str]]:
 
 def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[str, Any],
          said: Collection[str] = (), rivals: Iterable[Sequence[str]] = (), aliases: Iterable[str] = (),
-         elsewhere: Collection[str] = ()) -> bool:
-    """Some request clause says a word of this call's vocabulary (True when none is declared;
+         elsewhere: Collection[str] = (), kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,)) -> bool:
+    """Some request clause (a clause of `kinds`) says a word of this call's vocabulary (True when none is declared;
     `aliases`: the words of its values' other names, "hall" for the hallway), and does not open
     with a rival tool's words (`rivals`: the declared words of each tool acting on the same
     thing) while this call's come later: "hang up the call" asks to end a call, not to start one.
@@ -120,7 +123,7 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     if any(isinstance(value, str) for value in arguments.values()):
         aimed = set()  # a place or a person says what it acts on
     acts = vocabulary(name, declared, {})  # its own words: a message for somebody fits only through them
-    for clause in _request_stems(intent, said):
+    for clause in _request_stems(intent, said, kinds):
         if not any(_says_for_it(clause, phrase, aimed) for phrase in (acts if _message(clause) else phrases)):
             continue
         if any(_opens(clause, p) for p in others) and not any(_opens(clause, p) for p in phrases):

@@ -43,7 +43,7 @@ _HINTS = {
     ClauseKind.NEGATED.value: "The user asked you not to do this now. Do not do it. Acknowledge in one short "
                               "sentence.",
     ClauseKind.ABILITY.value: "The user only asked whether you can do this, not to do it now. Say in one short "
-                              "sentence that you can, if they ask you to.",
+                              "sentence, in the first person, that you can do it when they ask you to.",
     ClauseKind.STATEMENT.value: "The user did not ask you to do anything; they were telling you something. Reply "
                                 "kindly in one short sentence without using tools.",
     ClauseKind.QUESTION.value: "The user asked a question, not for an action. Answer it in one short sentence.",
@@ -71,14 +71,17 @@ _AFTER = {
 }
 
 
-def question(refused: Mapping[str, Any]) -> str | None:
-    """The robot's own question after a call refused as `UNCLEAR` whose argument lists its
-    values ("Which one do you mean: Anna, Ben, Clara or Dr. Weber?"), asked instead of another
-    model step (which on the embedded model tends to make the same call again), or after a call
-    held for `CONFIRM` ("Shall I call Anna?"); else None."""
+def own_words(refused: Mapping[str, Any]) -> str | None:
+    """The robot's own words after a refused call, said instead of another model step (which
+    on the embedded model tends to make the same call again, or word the refusal oddly): its
+    question after a call refused as `UNCLEAR` whose argument lists its values ("Which one do
+    you mean: Anna, Ben, Clara or Dr. Weber?") or held for `CONFIRM` ("Shall I call Anna?"),
+    and its "yes" to an ability question about that very call (`_about_this`); else None."""
     details = refused.get("details")
     if not isinstance(details, Mapping):
         return None
+    if isinstance(answer := details.get("answer"), str):
+        return answer
     if details.get("reason") == CONFIRM:
         asked = details.get("question")
         return asked if isinstance(asked, str) else None
@@ -162,6 +165,24 @@ def _glossed(spec: ToolSpec | None, arguments: Mapping[str, Any]) -> list[str]:
             for g in glosses(value, spec.description) for w in words(g)]
 
 
+def _about_this(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], said: Collection[str],
+                declared: Mapping[str, Sequence[str]]) -> bool:
+    """An ability question about this very call: it says the tool's own words ("could you put
+    the projector on by yourself?") and names each listed value the call has ("could you ring
+    Clara?"; not "could you phone people abroad?", made a call to Anna). The robot's own "yes"
+    answers it: the embedded model, asked to word it, said "I can't do that right now" or "You
+    can go back to your charger alone". Otherwise the model answers; it may know the robot
+    cannot (texts, stairs)."""
+    name, words_for = spec.name, declared.get(spec.name, ())
+    if not words_for:
+        return False
+    others = [w for tool in declared if tool != name for w in subject_words(tool)]
+    glossed = _glossed(spec, arguments)
+    return fits(intent, name, words_for, arguments, said, _siblings(name, declared), glossed, others,
+                kinds=(ClauseKind.ABILITY,)) and not unsaid(spec.description, spec.parameters, arguments,
+                                                           [*said, *intent.words()])
+
+
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
     voice: Mapping[str, VoiceDecl] | None = None,
@@ -195,6 +216,8 @@ def refusal(
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
         else:
             return None
+    answer = why == ClauseKind.ABILITY.value and spec is not None and _about_this(intent, spec, arguments, said,
+                                                                                  declared)
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
     others = fitting_tools(intent, declared, name) if why == OTHER else []
     hint = _HINTS[why] + (f" What they asked for fits {' or '.join(others)}." if others else "")
@@ -206,5 +229,6 @@ def refusal(
         "message": f"not done: the user did not ask for {name} now ({why})",
         "hint": hint,
         "details": {"tool": name, "reason": why, **({"fits": others} if others else {}),
-                    **({"choices": choices} if choices else {})},
+                    **({"choices": choices} if choices else {}),
+                    **({"answer": _AFTER[ClauseKind.ABILITY.value]} if answer else {})},
     }

@@ -17,7 +17,9 @@ the answer to that step (docs/voice.md, "Spoken results"). It is used only when:
 
 A step whose every call was refused because the person named none of the values its argument
 lists ("put me on a video call") is answered by the robot's own question, which names them
-(`gate.question`): the model, asked again, tends to make the same call once more.
+(`gate.own_words`): the model, asked again, tends to make the same call once more. So is an
+ability question about the very call the model made ("could you ring Clara?"): "Yes, I can do
+that when you ask me to."
 
 A step of look-ups only is said by its phrases, question or not, while the turn goes on with
 more the person asked (`continuing`): the look-up was one of the things asked ("tell me where
@@ -29,7 +31,7 @@ from __future__ import annotations
 from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
-from robovoice.assistant.gate import NOT_REQUESTED, question
+from robovoice.assistant.gate import NOT_REQUESTED, own_words
 from robovoice.assistant.reading import ClauseKind, Intent
 from robovoice.manifest.voice import VoiceDecl, fill, result_fields
 
@@ -62,9 +64,9 @@ def phrase_answer(
     read-only tools; `continuing`: the turn goes on with more the person asked."""
     if not step or intent is None:
         return None
-    questions = [question(r.result) for _, r in step if r.error == NOT_REQUESTED and r.result is not None]
-    if not continuing and len(questions) == len(step) and questions[-1] is not None:
-        return questions[-1]  # every call refused, the last for a value nobody named: the robot asks which
+    own = [own_words(r.result) for _, r in step if r.error == NOT_REQUESTED and r.result is not None]
+    if not continuing and len(own) == len(step) and own[-1] is not None:
+        return own[-1]  # every call refused, the last with the robot's own words: which one, or yes it can
     looked_up = all(called.name in read_only for called, _ in step)
     if not (continuing and looked_up) and (not asks_nothing(intent) or any(c.name in read_only for c, _ in step)):
         return None
