@@ -255,6 +255,10 @@ async def test_a_guess_is_looked_up_once_only() -> None:
     ("The robot can drive to the bathroom or the kitchen.", "I can drive to the bathroom or the kitchen."),
     ("Right now the robot isn't moving.", "Right now I am not moving."),
     ("The robot did not go to the front door.", "I did not go to the front door."),
+    ("The robot sees a small image of the room.", "I see a small image of the room."),
+    ("The robot needs to charge, so the robot goes to its dock.", "I need to charge, so I go to my dock."),
+    ("The robot was in the hallway.", "I was in the hallway."),
+    ("The robot arms are in the kitchen.", "The robot arms are in the kitchen."),  # not its own verb
     ("I am in the kitchen.", "I am in the kitchen."),  # already its own voice
     ("The robot vacuum is in the hallway.", "The robot vacuum is in the hallway."),  # another robot
 ])

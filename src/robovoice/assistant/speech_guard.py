@@ -181,9 +181,13 @@ def state_claimed_in(sentence: str) -> str | None:
 
 # A small model speaks of itself as its instructions name it, "the robot"; the robot says "I".
 _SELF = re.compile(r"\bthe robot(?:'s\b|\s+(is|isn't|has|hasn't|was|wasn't|does|doesn't|did|didn't|can|can't|cannot"
-                   r"|could|couldn't|will|won't|would|should|must|may|might|needs|wants)\b)", re.IGNORECASE)
+                   r"|could|couldn't|will|won't|would|should|must|may|might|needs|wants"
+                   # a verb of its own (not "the robot arms are"): "The robot sees a small image of the room."
+                   r"|sees|hears|knows|goes|says|thinks|finds|gets|makes|moves|drives|works|stays|waits|keeps|shows"
+                   r"|comes|remains|uses|takes|seems|looks|sounds|feels|sits|stands|tries|carries|heads|stops)\b)",
+                   re.IGNORECASE)
 _FIRST_PERSON = {"is": "am", "isn't": "am not", "has": "have", "hasn't": "haven't", "does": "do", "doesn't": "don't",
-                 "needs": "need", "wants": "want"}
+                 "goes": "go", "tries": "try", "carries": "carry"}
 
 
 def in_first_person(sentence: str) -> str:
@@ -191,7 +195,11 @@ def in_first_person(sentence: str) -> str:
     "My battery is at 94%.", "The robot is already at its dock." -> "I am already at my dock."."""
     def first(match: re.Match[str]) -> str:
         verb = match.group(1)
-        return "my" if verb is None else "I " + _FIRST_PERSON.get(verb.lower(), verb.lower())
+        if verb is None:
+            return "my"
+        verb = verb.lower()
+        plain_verb = verb[:-1] if verb.endswith("s") and verb not in ("was", "does") else verb  # "needs" → "need"
+        return "I " + _FIRST_PERSON.get(verb, plain_verb)
 
     plain = sentence.replace("\u2019", "'")
     out = _SELF.sub(first, plain)
