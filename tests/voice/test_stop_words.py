@@ -53,6 +53,16 @@ def test_while_moving_a_stop_clause_of_its_own_is_a_stop(text: str) -> None:
     assert says_stop(text) and not is_stop_command(text)
 
 
+@pytest.mark.parametrize("text", ["Falt!", "Stob!", "Okay, salt!"])
+def test_while_moving_a_near_miss_of_stop_said_alone_is_a_stop(text: str) -> None:
+    assert says_stop(text) and not is_stop_command(text)
+
+
+@pytest.mark.parametrize("text", ["What?", "Top!", "Hold!", "Falt the car.", "Go!", "Stood."])
+def test_while_moving_a_word_not_close_to_stop_or_a_near_miss_with_more_is_not(text: str) -> None:
+    assert not says_stop(text)
+
+
 @pytest.mark.parametrize("text", ["Don't stop, keep going.", "Stop? No, carry on.", "I told him to stop the car.",
                                   "Go to the kitchen.", "Stop the call, please.", "Hold it up to the light.", ""])
 def test_while_moving_carrying_on_or_other_words_are_not_a_stop(text: str) -> None:

@@ -63,7 +63,20 @@ def says_stop(text: str) -> bool:
     transcript with one as a clause of its own and nothing saying to carry on ("Stop, man!" is
     how Whisper hears a quick "Stop there!"; "No, no, stop!"). A needless stop costs less than
     a missed one; with the wake word, `is_stop_command` alone decides (the rest is the model's)."""
-    if is_stop_command(text):
+    if is_stop_command(text) or _near_stop(text):
         return True
     return not _CARRY_ON.search(text) and any(is_stop_command(part) for part in _CLAUSE.split(text))
 
+
+# Whisper tiny.en writes a shouted one-word stop as a near miss ("Falt!" for "Halt!", dev audio
+# clip nowake-stop-3; "Stob!"): said alone while the robot moves, a word one letter from "stop"
+# or "halt" is taken for one ("Salt!" stops it too: a needless stop costs less than a missed
+# one). One letter changed, not dropped or added: "What?" and "Top!" are words said alone.
+_NEAR: Final = ("stop", "halt")
+
+
+def _near_stop(text: str) -> bool:
+    tokens = [t for t in normalise(text).split() if [t] not in _FILLER_WORDS]
+    return len(tokens) == 1 and any(
+        len(tokens[0]) == len(word) and sum(a != b for a, b in zip(tokens[0], word, strict=True)) == 1
+        for word in _NEAR)
