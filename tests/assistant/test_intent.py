@@ -344,6 +344,11 @@ def test_a_relation_said_before_is_someone_a_reference_can_mean() -> None:
     ("Hallway. Now, please.", ("Hallway",)),  # a bare place, then "now"
     ("Whereabouts are you?", ("Whereabouts are you",)),
     ("Would you know how to phone my daughter?", ()),  # audio test v2 heard this as a request
+    ("Once the post has come, you can drive to the study.", ()),  # something else first: not now
+    ("Later on, as soon as the rain stops, head to the garden.", ()),
+    ("Switch the radio on and once that's done, go to the study.",  # "that": the step before
+     ("Switch the radio on", "go to the study")),
+    ("Go to the study once more, please.", ("Go to the study once more",)),
 ])
 def test_what_would_be_done_is_not_asked_now(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
@@ -496,6 +501,7 @@ def test_where_the_robot_will_have_got_to_is_the_first_step() -> None:
     "Away you go to the garden, pet.",
     "Kill the radio, would you?",
     "Would you ever pop out to the garden and fetch my hat for me?",  # Irish: "for me" in a later clause
+    "Would you ever go out to the garden and then come back to the study.",  # …or a next step
     "Enter the study and wait there.",  # dev enter-1 (audio test v12 heard "head to the front door" so)
 ])
 def test_everyday_requests_from_around_the_isles_and_beyond_ask(text: str) -> None:
@@ -507,3 +513,10 @@ def test_everyday_requests_from_around_the_isles_and_beyond_ask(text: str) -> No
 def test_would_you_ever_without_for_whom_is_still_a_question() -> None:
     assert not read_request("Would you ever go out to the garden? Just wondering.").asks_action
     assert not read_request("Would you ever go out to the garden and look around on your own?").asks_action
+
+
+@pytest.mark.parametrize("text", ["Ben's bought a boat, would you believe it?", "Can you believe the cheek of him!",
+                                  "Clara rang at midnight, can you imagine that?"])
+def test_an_exclamation_said_as_a_question_asks_nothing(text: str) -> None:
+    """Text test v24 (read run): "…, can you believe it!" after news of Anna started a call."""
+    assert not read_request(text).asks_action

@@ -36,8 +36,10 @@ def _asks_about_kinds(text: str) -> bool:
 
 
 # Irish English asks with "would you ever …": "would you ever put the kettle on for me?" is a
-# request when it says for whom or "please" ("would you ever go out on the balcony?" is not)
-_WOULD_YOU_EVER = re.compile(r"^would you ever (?=.*\b(?:for (?:me|us)|please)\b)", re.IGNORECASE)
+# request when it says for whom or "please", or goes on to a next step ("would you ever go down
+# to the bedroom and then come back out to the hallway"); "would you ever go out on the
+# balcony?" is not
+_WOULD_YOU_EVER = re.compile(r"^would you ever (?=.*\b(?:for (?:me|us)|please|then|after that)\b)", re.IGNORECASE)
 
 
 def asks_ever(clause: str, utterance: str) -> bool:
@@ -58,7 +60,10 @@ def asks_ability(text: str) -> bool:
 # A condition before a request: what to do if or when something happens, not now.
 CONDITION = re.compile(  # (not a question: "when will you be charged?"); "supposing I fell, …" too
     r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case|"
-    r"suppos(?:e|ing)|imagine|what if|let'?s say|say (?:i|we)\b)\b",
+    r"suppos(?:e|ing)|imagine|what if|let'?s say|say (?:i|we)\b|"
+    # something else happening first: "once my programme's finished, …", "as soon as Ben's here, …"
+    # (not the robot's own step, "once you've …", nor "once that's done": the one before it)
+    r"(?:once|as soon as) (?!(?:you|ye|again|more|upon|that|this|it)\b))\b",
     re.IGNORECASE)
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 COURTESY = re.compile(

@@ -53,6 +53,7 @@ from robovoice.assistant.lexicon import (
     OWN_PLAN,
     QUESTION_WORDS,
     RELATIONS,
+    RHETORICAL,
     TAG,
     WITHDRAWAL,
     base_form,
@@ -126,7 +127,7 @@ def classify(clause: str) -> ClauseKind:
     said_first = opening.group(0) if opening else ""
     text = clause.strip()[len(said_first):].strip()
     lowered = text.lower()
-    if not text:
+    if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
     if _STOP.search(lowered) and not re.search(r"\b(?:don'?t|do not|never|no need to|needn'?t|not) stop\b", lowered):
         return ClauseKind.REQUEST  # a stop is always a request

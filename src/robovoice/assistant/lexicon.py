@@ -113,3 +113,7 @@ NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|
 LATER_ONLY = re.compile(r"^(?:(?:later(?: on)?|tomorrow(?: morning| afternoon| evening)?|tonight|this (?:evening|"
                         r"afternoon)|after (?:lunch|dinner|breakfast|tea)|in an? (?:bit|while|hour|minute|moment)|"
                         r"some other time|another time)\b[\s,]*)+$", re.IGNORECASE)
+# An exclamation said as a question, not a request: "…, can you believe it!", "would you believe it?"
+RHETORICAL = re.compile(r"^(?:can|could|would|will) (?:you|ye) (?:ever )?(?:believe|imagine|credit)\b"
+                        r"(?: (?:it|that|this|them|him|her|the (?:cheek|nerve)(?: of (?:it|him|her|them))?))?\W*$",
+                        re.IGNORECASE)
