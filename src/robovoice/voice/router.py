@@ -8,7 +8,8 @@ answers at once) and hands anything slow to a task of the pipeline's TaskGroup (
 - wake word: heard during the robot's own playback -> rejected; while the robot is busy ->
   barge-in (speech dropped, the active turn cancelled); then turn-taking is told. An unsure
   wake word (a score under the threshold) is only passed on while the robot is idle and a
-  transcript will be made, and not while it moves: the command turn checks that it names the robot;
+  transcript will be made: the command turn checks that it names the robot (and, while the
+  robot moves, takes words that do not for a stop check);
 - speech starts or pauses: the motion watch is asked to refresh (for a stop without the
   wake word); at a pause of an utterance that will need it, transcription starts speculatively,
   and its transcript may shorten the end-of-turn silence and prefill the model
@@ -94,10 +95,9 @@ class Router:
         self.floor.changed.set()
 
     async def _on_wake(self, event: HeardWake) -> None:
-        if not event.sure and (self.stt is None or self.audio_native or self.floor.busy or self.speech.busy
-                               or self.motion.moving):
-            # moving: a stop needs no wake word, and is transcribed with the stop words as hint
-            # only while it is not addressed; an unsure wake would make it a command instead
+        if not event.sure and (self.stt is None or self.audio_native or self.floor.busy or self.speech.busy):
+            # (while the robot moves it is passed on: a command turn whose words do not name the
+            # robot is still checked for a stop there, as it would be without the wake word)
             log.info("unsure wake word (%.2f) at %.2f s ignored: no transcript to check it, or the robot is busy",
                      event.score, event.at)
             return
