@@ -520,3 +520,9 @@ def test_would_you_ever_without_for_whom_is_still_a_question() -> None:
 def test_an_exclamation_said_as_a_question_asks_nothing(text: str) -> None:
     """Text test v24 (read run): "…, can you believe it!" after news of Anna started a call."""
     assert not read_request(text).asks_action
+
+
+def test_once_after_a_request_is_its_outcome_not_something_else_first() -> None:
+    """"Call Ben, and once he's on, put the projector on" (an eval text): not put off."""
+    steps = read_request("Ring Clara, and once she's on, switch the radio off.").steps
+    assert steps[0] == "Ring Clara" and steps[-1] == "switch the radio off"

@@ -60,11 +60,12 @@ def asks_ability(text: str) -> bool:
 # A condition before a request: what to do if or when something happens, not now.
 CONDITION = re.compile(  # (not a question: "when will you be charged?"); "supposing I fell, …" too
     r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case|"
-    r"suppos(?:e|ing)|imagine|what if|let'?s say|say (?:i|we)\b|"
-    # something else happening first: "once my programme's finished, …", "as soon as Ben's here, …"
-    # (not the robot's own step, "once you've …", nor "once that's done": the one before it)
-    r"(?:once|as soon as) (?!(?:you|ye|again|more|upon|that|this|it)\b))\b",
+    r"suppos(?:e|ing)|imagine|what if|let'?s say|say (?:i|we)\b)\b",
     re.IGNORECASE)
+# … and so is something else happening first, said before anything is asked: "once my
+# programme's finished, …", "as soon as Ben's here, …" (not the robot's own step, "once you've
+# …"; after a request it is that request's outcome: "call Ben, and once he's on, …")
+EVENT_FIRST = re.compile(r"^(?:once|as soon as) (?!(?:you|ye|again|more|upon|that|this|it)\b)", re.IGNORECASE)
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) (?:ready|free)|you (?:don'?t|do not|wouldn'?t) mind|"

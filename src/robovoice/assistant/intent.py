@@ -31,6 +31,7 @@ from robovoice.assistant.hypothetical import (
     ARRIVED,
     CONDITION,
     COURTESY,
+    EVENT_FIRST,
     JUST_ASKING,
     ON_ARRIVAL,
     ONCE_THERE,
@@ -236,7 +237,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs
                 continue
             kind, part = ClauseKind.REQUEST, rest  # "…, and when you get there give Ben a ring": the next step
-        elif CONDITION.match(bare):
+        elif CONDITION.match(bare) or (EVENT_FIRST.match(bare) and not any(c.kind is ClauseKind.REQUEST
+                                                                           for c in clauses)):
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy
             if not COURTESY.match(bare) and not condition:
                 condition = True
