@@ -173,14 +173,19 @@ def _about_this(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], sa
     answers it: the embedded model, asked to word it, said "I can't do that right now" or "You
     can go back to your charger alone". Otherwise the model answers; it may know the robot
     cannot (texts, stairs)."""
-    name, words_for = spec.name, declared.get(spec.name, ())
-    if not words_for:
-        return False
-    others = [w for tool in declared if tool != name for w in subject_words(tool)]
-    glossed = _glossed(spec, arguments)
-    return fits(intent, name, words_for, arguments, said, _siblings(name, declared), glossed, others,
-                kinds=(ClauseKind.ABILITY,)) and not unsaid(spec.description, spec.parameters, arguments,
-                                                           [*said, *intent.words()])
+    return bool(declared.get(spec.name)) and _fits(
+        intent, spec.name, arguments, said, declared, _glossed(spec, arguments), (ClauseKind.ABILITY,)
+    ) and not unsaid(spec.description, spec.parameters, arguments, [*said, *intent.words()])
+
+
+def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collection[str],
+          declared: Mapping[str, Sequence[str]], glossed: Sequence[str],
+          kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,)) -> bool:
+    """`fit.fits` for this call, with its rivals and what the other tools act on taken from
+    every tool's declared words."""
+    elsewhere = [w for tool in declared if tool != name for w in subject_words(tool)]
+    return fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared), glossed,
+                elsewhere, kinds)
 
 
 def refusal(
@@ -209,8 +214,7 @@ def refusal(
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
-        elif not fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared),
-                      glossed, [w for tool in declared if tool != name for w in subject_words(tool)]):
+        elif not _fits(intent, name, arguments, said, declared, glossed):
             why = OTHER  # "plug yourself in" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make

@@ -198,7 +198,7 @@ def in_first_person(sentence: str) -> str:
         if verb is None:
             return "my"
         verb = verb.lower()
-        plain_verb = verb[:-1] if verb.endswith("s") and verb not in ("was", "does") else verb  # "needs" → "need"
+        plain_verb = verb[:-1] if verb.endswith("s") and verb != "was" else verb  # "needs" → "need"
         return "I " + _FIRST_PERSON.get(verb, plain_verb)
 
     plain = sentence.replace("\u2019", "'")

@@ -34,7 +34,7 @@ from robovoice.voice.motion import MotionWatch
 from robovoice.voice.progress import ProgressNarrator
 from robovoice.voice.roles import VoiceRoles
 from robovoice.voice.speech import SpeechOutput
-from robovoice.voice.stop import is_stop_command, says_stop
+from robovoice.voice.stop import is_stop_command
 from robovoice.voice.stopping import StopController
 from robovoice.voice.turns import TurnTaking, Verdict
 from robovoice.voice.utterance import (
@@ -173,7 +173,7 @@ class CommandTurn:
                 if not verdict.wake_sure and not names_robot(raw, c.config.wake_phrase):
                     # an unsure wake word, and the words do not say the robot's name: talk, or,
                     # while the robot moves, a stop said without the wake word (`_stop_unaddressed`)
-                    if not await self._stop_unaddressed(utt, text):
+                    if not await self._stop_unaddressed(utt, raw):
                         await report_ignored(c.emit, c.stats, "wake_unconfirmed", utt, raw)
                     return
                 if not re.search(r"[A-Za-z0-9]", text):
@@ -223,18 +223,15 @@ class CommandTurn:
                 await c.emit(VoiceTurnFinished(self.id, result, cancelled, metrics.as_dict()))
             c.answers.save(self.id)
 
-    async def _stop_unaddressed(self, utt: HeardUtterance, text: str) -> bool:
+    async def _stop_unaddressed(self, utt: HeardUtterance, raw: str) -> bool:
         """Stop for a short utterance heard while the robot moves that an unsure wake word made a
-        command turn but whose words do not name the robot, when they say stop (`says_stop`, as
-        the stop check without the wake word has it): an unsure wake word never loses a stop."""
+        command turn but whose words do not name the robot, when they say stop, as the stop check
+        without the wake word would (`StopController.stop_if_said`): an unsure wake word never
+        loses a stop. Whether it stopped."""
         c = self._c
-        if not c.motion.moving or utt.duration_s > c.config.turns.stop_max_s or not says_stop(text):
+        if not c.motion.moving or utt.duration_s > c.config.turns.stop_max_s:
             return False
-        if utt.playback_share > 0.3 and c.stopper.own_words.contains(text):
-            return False  # the robot's own "stop", heard back
-        if not await c.stopper.stop_once(utt.start, text, utt.end, self.metrics, self.id):
-            await report_ignored(c.emit, c.stats, "stopped_at_pause", utt, text)
-        return True
+        return await c.stopper.stop_if_said(utt, raw, self.metrics, self.id) is None
 
     def _end_motion(self) -> None:
         self._c.motion.forget(self._moves)

@@ -133,14 +133,21 @@ class StopController:
             await report_ignored(self.emit, self.stats, "no_stt_for_stop_check", utt)
             return
         text = await self.stt.text_for(utt.audio, metrics, speculation, STOP_HINT)
+        if (why := await self.stop_if_said(utt, text, metrics)) is not None:
+            await report_ignored(self.emit, self.stats, why, utt, text)
+
+    async def stop_if_said(self, utt: HeardUtterance, text: str, metrics: TurnMetrics,
+                           turn: int | None = None) -> str | None:
+        """Stop for `utt` when its transcript `text` says stop (`says_stop`, the wake phrase
+        removed) and is not the robot's own voice heard back: None when it did (here, or already
+        at a pause), else why not ("not_a_stop", "own_voice"). `turn`: as for `stop_once`."""
         if not says_stop(strip_wake_words(text, self.config.wake_phrase)):
-            await report_ignored(self.emit, self.stats, "not_a_stop", utt, text)
-            return
+            return "not_a_stop"
         if utt.playback_share > 0.3 and self.own_words.contains(text):
-            await report_ignored(self.emit, self.stats, "own_voice", utt, text)  # the robot heard itself
-            return
-        if not await self.stop_once(utt.start, text, utt.end, metrics):
+            return "own_voice"  # the robot heard itself
+        if not await self.stop_once(utt.start, text, utt.end, metrics, turn):
             await report_ignored(self.emit, self.stats, "stopped_at_pause", utt, text)  # `check_pause` did
+        return None
 
     async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics, spare: float | None = None,
                    at_pause: bool = False) -> None:
