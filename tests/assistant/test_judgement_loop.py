@@ -76,6 +76,25 @@ async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     assert len(server.requests) == 2
 
 
+async def test_a_step_the_robot_could_not_do_is_said_before_the_next_thing_asked() -> None:
+    """"Drive out to the balcony, then turn on the projector.": the drive fails (the door is
+    closed). The projector's own phrase would have been the whole answer, and the person would
+    never hear the drive failed: the model words the failure first (offered no tools), then
+    does the next thing asked. The hint's content, said, is the answer, not a hint read out."""
+    script: list[ScriptedReply] = [
+        call("navigate_to", target="balcony"),
+        TextReply("The robot cannot get to the balcony (the balcony door is closed)."),
+        call("set_projector_power", on=True),
+    ]
+    async with scripted_sim(script) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn("Drive out to the balcony, then turn on the projector.")
+        assert robot.sim is not None and robot.sim.state.projector_on
+    assert [o.error for o in result.outcomes] == ["unreachable", None]
+    assert server.requests[1].tool_names == [] and server.requests[1].messages[-1]["role"] == "tool"
+    assert server.requests[2].last_user_text == "Now do the next thing I asked: turn on the projector."
+    assert result.reply == "I cannot get to the balcony (the balcony door is closed). The projector is now on."
+
+
 async def test_a_stop_is_refused_only_where_the_robot_stands_still() -> None:
     """"Hold it! Stay put!" reads as "carry on as you are" (a statement), and a drive asked in
     the same words would be refused; the robot's stop tool (voice role "stop") is not while the

@@ -81,6 +81,21 @@ def test_the_system_prompt_and_any_tool_hint_read_out_are_unspeakable() -> None:
     assert speakable("I know the kitchen and the bedroom.", known) is not None
 
 
+def test_what_a_tool_hint_tells_the_model_to_say_is_speakable_and_its_instructions_are_not() -> None:
+    known = ModelOnlyText()
+    known.add_hint("tell the user the robot cannot get to the balcony (door closed)")
+    known.add_hint("tell the user you do not know that place, name the known places and ask which one they mean")
+    known.add_hint("tell the user the battery is too low and offer to return to the charging dock")
+    assert speakable("The robot cannot get to the balcony (the balcony door is closed).", known) is not None
+    assert speakable("I do not know that place.", known) is not None
+    assert speakable("Name the known places and ask which one they mean.", known) is None
+    assert speakable("I offer to return to the charging dock.", known) is None
+    assert speakable("Tell the user the robot cannot get there.", known) is None  # "the user" gives it away
+    # a hint that tells the model nothing to say is model-only whole
+    known.add_hint("the robot has stopped; ask where to go next")
+    assert speakable("The robot has stopped; ask where to go next.", known) is None
+
+
 def test_a_tool_read_back_is_unspeakable_and_a_true_answer_near_its_description_is_not() -> None:
     """Seen from Qwen2.5-Coder under its own GGUF template (llama-server, llama-cpp-python): after a
     look-up hint it copied the tool's definition out, one sentence at a time."""
@@ -261,6 +276,7 @@ async def test_a_guess_is_looked_up_once_only() -> None:
     ("The robot arms are in the kitchen.", "The robot arms are in the kitchen."),  # not its own verb
     ("I am in the kitchen.", "I am in the kitchen."),  # already its own voice
     ("The robot vacuum is in the hallway.", "The robot vacuum is in the hallway."),  # another robot
+    ("Please tell the robot which place you mean.", "Please tell me which place you mean."),  # the person's doing
 ])
 def test_the_robot_speaks_of_itself_in_the_first_person(sentence: str, spoken: str) -> None:
     assert in_first_person(sentence) == spoken

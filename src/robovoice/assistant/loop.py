@@ -33,7 +33,7 @@ from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.model_step import Emit, model_step, say
 from robovoice.assistant.motion_probe import PoseMotionProbe
-from robovoice.assistant.phrase import found_phrase, phrase_answer, result_phrase
+from robovoice.assistant.phrase import found_phrase, phrase_answer, result_phrase, robot_failed
 from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
 from robovoice.assistant.reading import Intent
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
@@ -149,7 +149,7 @@ class Assistant:
         steps = 0
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
         refused: set[str] = set()  # calls (name and arguments) the check before acting refused this turn
-        answer_now = False
+        answer_now = resume = False  # resume: a step the robot could not do is said before the next
         model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
         for tool in (tools := await self.tools.specs()):  # and their descriptions (a small model reads them back)
             model_only.add(tool.description, short_copies=False)
@@ -222,6 +222,10 @@ class Assistant:
                 messages.append(ChatMessage("user", GUESSED_HINT))
                 continue
             messages.append(ChatMessage("assistant", text, tuple(c.to_history() for c in requested)))
+            if not requested and resume:  # the failure said: on to the next thing asked
+                answer_now = resume = False
+                messages.append(next_step())
+                continue
             if not requested and lookup and text and step < max_steps - 2:
                 # the look-up answered in words: the next thing asked is still to do
                 passed += 1
@@ -254,7 +258,7 @@ class Assistant:
             for _, r in ran:  # a tool error's hint is for the model: never read out
                 hint = r.result.get("hint") if r.is_error and r.result is not None else None
                 if isinstance(hint, str):
-                    model_only.add(hint)
+                    model_only.add_hint(hint)
             more = asked_left(asked, stepped, passed) and step < max_steps - 2
             # only looked up, though a place or a person an action lists was asked for (an answer
             # in words alone is not asked again: there a misread question would be made an action)
@@ -280,6 +284,8 @@ class Assistant:
             if left is not None:  # only looked up: the request itself is asked for once more
                 nudged, only = True, left[1]
                 messages.append(ChatMessage("user", step_hint(left[0], False, first=False)))
+            elif more and phrase is None and any(robot_failed(r) for _, r in ran):
+                answer_now = resume = True  # what the robot could not do is said (by the model) first
             elif more:
                 # a compound request: the small model tends to answer after the first call, so it
                 # is told which of the things the user asked comes next (after a look-up on the

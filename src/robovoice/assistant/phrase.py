@@ -74,6 +74,12 @@ def phrase_answer(
     return " ".join(phrases) if phrases is not None else None
 
 
+def robot_failed(returned: ToolReturned) -> bool:
+    """The robot could not do the call (an unknown place, a closed door), as opposed to a call
+    the assistant itself refused or could not make."""
+    return returned.is_error and returned.error not in _NOT_THE_ROBOTS
+
+
 def found_phrase(
     voice: Mapping[str, VoiceDecl], calls: Sequence[ToolCalled], outcomes: Sequence[ToolReturned],
     read_only: Collection[str],

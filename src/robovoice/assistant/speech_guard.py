@@ -69,6 +69,8 @@ COPIED_RUN_WORDS = 6  # this many words in a row from the model's instructions: 
 _SHORTEST_COPY = 3  # a sentence shorter than the run is a copy when all of it (3 words or more) is
 _ADDRESSEE = ("the", "user")  # how instructions name the person; speaking to them, the robot says "you"
 _WORD = re.compile(r"[a-z0-9]+")
+# what a tool error's hint tells the model to say: up to its next instruction
+_TOLD = re.compile(r"\s*tell the user (?:that )?(.+?)(?=[,;]| and |$)", re.IGNORECASE)
 
 
 def _words(text: str) -> list[str]:
@@ -105,6 +107,15 @@ class ModelOnlyText:
         words = _words(text)
         for size in range(_SHORTEST_COPY if short_copies else COPIED_RUN_WORDS, COPIED_RUN_WORDS + 1):
             self._runs.update(tuple(words[i : i + size]) for i in range(len(words) - size + 1))
+
+    def add_hint(self, hint: str) -> None:
+        """Remember a tool error's hint as model-only, all but what it tells the model to say
+        ("tell the user the robot cannot get to the balcony"): that, said, is the answer, not the
+        hint read out. The instructions around it ("…, name the known places and ask which one
+        they mean") stay model-only."""
+        told = _TOLD.match(hint)
+        for part in (hint,) if told is None else (hint[: told.start(1)], hint[told.end(1) :]):
+            self.add(part)
 
     def copied_in(self, sentence: str) -> str | None:
         """The model-only words `sentence` reproduces, or None when it reproduces none."""
@@ -186,13 +197,16 @@ _SELF = re.compile(r"\bthe robot(?:'s\b|\s+(is|isn't|has|hasn't|was|wasn't|does|
                    r"|sees|hears|knows|goes|says|thinks|finds|gets|makes|moves|drives|works|stays|waits|keeps|shows"
                    r"|comes|remains|uses|takes|seems|looks|sounds|feels|sits|stands|tries|carries|heads|stops)\b)",
                    re.IGNORECASE)
+# the robot as the object of the person's doing: "Please tell the robot which place you mean."
+_SELF_OBJECT = re.compile(r"\b(tell|ask|show|give|let|help|follow|call|wake|remind)\s+the robot\b", re.IGNORECASE)
 _FIRST_PERSON = {"is": "am", "isn't": "am not", "has": "have", "hasn't": "haven't", "does": "do", "doesn't": "don't",
                  "goes": "go", "tries": "try", "carries": "carry"}
 
 
 def in_first_person(sentence: str) -> str:
     """`sentence` with the robot's self in the first person: "The robot's battery is at 94%." ->
-    "My battery is at 94%.", "The robot is already at its dock." -> "I am already at my dock."."""
+    "My battery is at 94%.", "The robot is already at its dock." -> "I am already at my dock.", "Please tell
+    the robot which one." -> "Please tell me which one."."""
     def first(match: re.Match[str]) -> str:
         verb = match.group(1)
         if verb is None:
@@ -202,7 +216,7 @@ def in_first_person(sentence: str) -> str:
         return "I " + _FIRST_PERSON.get(verb, plain_verb)
 
     plain = sentence.replace("\u2019", "'")
-    out = _SELF.sub(first, plain)
+    out = _SELF_OBJECT.sub(r"\1 me", _SELF.sub(first, plain))
     if out == plain:
         return sentence
     out = re.sub(r"\bits\b", "my", out)  # "at its charging dock": the robot's own
