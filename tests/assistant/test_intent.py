@@ -58,6 +58,9 @@ POSE = ToolSpec("get_robot_pose", "where", read_only=True)
     "Could ye nip out to the garden, pet?",
     "Will youse put the telly on?",
     "Y'all get on over to the garage.",
+    # twenty-first session (text v25): Scots "gonnae" (will you), a step said with its "you"
+    "Gonnae put the telly on for me?",
+    "Firstly you come to the garage.",
 ])
 def test_requests_ask_for_action(text: str) -> None:
     assert read_request(text).asks_action, read_request(text)
@@ -445,6 +448,21 @@ def test_saying_it_is_not_asked_now_makes_a_can_you_an_ability_question() -> Non
     assert not read_request("I don't need it done yet, but can you drive to the hall alone?").asks_action
     # declining one thing is not saying the next request is only a question
     assert read_request("I don't need you to go to the kitchen, but can you call Ben?").steps == ("can you call Ben",)
+
+
+def test_a_step_said_with_its_you_is_a_step_and_a_remark_is_not() -> None:
+    """Text v25's compound-8 ("First you go to bathroom, after that …") left the drive out."""
+    assert read_request("First you switch the telly on, then you go to the garage.").steps == (
+        "First you switch the telly on", "you go to the garage")
+    assert read_request("Go to the garage, you look worn out.").steps == ("Go to the garage",)
+    assert read_request("Then you know the way.").steps == ()
+
+
+def test_asking_whether_it_is_beyond_the_robot_makes_a_can_you_an_ability_question() -> None:
+    """Text v25's ability-2 ("…, or is that beyond you?") started the call."""
+    assert not read_request("Could you ring the plumber for me, or would that be too tricky for you?").asks_action
+    assert not read_request("Can you drive out to the garden, or is that beyond you?").asks_action
+    assert read_request("Gonnae no ring the plumber.").clauses[0].kind is ClauseKind.NEGATED
 
 
 def test_a_place_after_not_that_one_replaces_it_and_just_that_is_said_again() -> None:

@@ -105,6 +105,8 @@ JUST_ASKING = re.compile(
     r"\b(?:(?:just|only) (?:asking|wondering|curious)|out of (?:interest|curiosity)|hypothetically|in theory|"
     r"just so (?:i|we)(?:'m| am| are|'re)? (?:know|clear|sure)|for (?:future|my own|my) (?:reference|information)|"
     r"want(?:ed)? to know (?:(?:if|whether|that) )?you (?:can|could)|"
+    # "Can you make video calls to my son, or is that beyond you?": whether it can, said outright
+    r"(?:is|would) (?:that|it|this) (?:be )?(?:beyond you|too (?:much|hard|difficult|tricky|complicated) for you)|"
     # "I'm not asking you to do it now, but can you …?": said to be not a request
     r"not (?:asking|telling) you to (?:do (?:it|that|this|anything)|go anywhere)|"
     r"(?:don'?t|do not) need (?:you to do )?(?:it|that|this)(?: done)? (?:now|today|yet))\b",

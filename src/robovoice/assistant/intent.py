@@ -46,6 +46,7 @@ from robovoice.assistant.lexicon import (
     FILLER,
     IMPERATIVE_SHAPE,
     IMPERATIVES,
+    IN_ORDER,
     LATER,
     LATER_ONLY,
     NOT_A_VERB,
@@ -57,6 +58,7 @@ from robovoice.assistant.lexicon import (
     RHETORICAL,
     TAG,
     WITHDRAWAL,
+    YOU_DO,
     base_form,
     words,
 )
@@ -67,7 +69,7 @@ from robovoice.assistant.reading import Clause, ClauseKind, Intent
 _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
-    r"hold off|rather not|rather you didn'?t|no,|"
+    r"hold off|rather not|rather you didn'?t|no,|gonnae no|"
     r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace)|"
     r"let (?:it|that|them) be|don'?t touch)\b"
     r"|\bnot\s*$|^not\b",  # "…, not Ben"
@@ -76,7 +78,7 @@ _NEGATION = re.compile(
 _MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
-    r"^time to\b|^(?:off|away) you go\b|^go and\b|"
+    r"^gonnae\b(?! no\b)|^time to\b|^(?:off|away) you go\b|^go and\b|"
     # advice to the robot is a request, not a past it missed ("you ought to charge up", "I think
     # you'd better ring Clara"; not "you should have seen it", "you must be tired")
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
@@ -139,8 +141,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.NEGATED
     if asks_ability(text):
         return ClauseKind.ABILITY
-    if _POLITE.search(lowered):
-        return ClauseKind.REQUEST
+    if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)):
+        return ClauseKind.REQUEST  # "could you …"; "first you go to bathroom": a step said to the robot
     first = words(lowered)[0]
     if first == "do" and ((len(words(lowered)) > 1 and words(lowered)[1] in IMPERATIVES)
                           or re.search(r"\b(?:please|kindly)\W*$", said_first, re.I)):
@@ -255,7 +257,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind = ClauseKind.REQUEST
         previous = clauses[at] if (at := _last_said(clauses)) is not None else None
         ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()))  # "first the kitchen"
-        if kind is ClauseKind.STATEMENT and (ordered or (_fragment(part) and (
+        you_do = YOU_DO.match(bare) and IMPERATIVE_SHAPE.match(bare[4:])  # "…, then you go to the hallway"
+        if kind is ClauseKind.STATEMENT and (ordered or ((_fragment(part) or you_do) and (
                 corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))
                 or (corrected and _fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
@@ -317,10 +320,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
-# A remark about oneself inside a correction: "go to the bedroom, no, sorry, I'm muddled, the
-# living room" (the place after it is still the one meant)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
-                    r"|(?:good|dear|bless) (?:me|grief|lord)|goodness)\b", re.IGNORECASE)
+                    r"|(?:good|dear|bless) (?:me|grief|lord)|goodness)\b", re.IGNORECASE)  # "no, sorry, I'm muddled"
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
 _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |your )?\w+(?: \w+)?"

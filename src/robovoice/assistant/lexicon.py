@@ -40,6 +40,10 @@ IMPERATIVES = frozenset({
     "join", "photograph", "snap", "capture", "shut", "try", "nip", "plug", "trot", "toddle", "scoot", "wander", "zip",
     "kill", "gie", "enter",  # "kill the projector"; Scots "gie Clara a call" (give); "enter the kitchen"
 })
+# "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
+IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
+YOU_DO = re.compile(rf"^you (?:{'|'.join(sorted(IMPERATIVES))})\b", re.IGNORECASE)
+
 
 QUESTION_WORDS = frozenset({
     "what", "where", "whereabouts", "which", "who", "whom", "whose", "when", "why", "how", "is", "are", "am", "do",
