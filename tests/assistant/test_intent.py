@@ -94,7 +94,7 @@ def test_requests_ask_for_action(text: str) -> None:
     ("They moved into the flat upstairs.", ClauseKind.STATEMENT),
     ("I just need a minute to find my glasses.", ClauseKind.STATEMENT),  # no "want": not a wish for the robot
     ("Could you ring the doctor in an emergency? I just want to know you can.", ClauseKind.ABILITY),
-    ("Would you ever drive into the garden?", ClauseKind.ABILITY),  # no "for me", no "please": a question
+    ("Would you ever drive into the garden, at all?", ClauseKind.ABILITY),  # "at all": it wonders
     ("Is the telly on?", ClauseKind.QUESTION),  # an auxiliary is no imperative's verb
     ("Was the heating off all night?", ClauseKind.QUESTION),
     ("Ring the doctor when I fall over.", ClauseKind.ABILITY),  # a condition, not what it is for
@@ -528,8 +528,12 @@ def test_everyday_requests_from_around_the_isles_and_beyond_ask(text: str) -> No
     assert read_request(text).asks_action
 
 
-def test_would_you_ever_without_for_whom_is_still_a_question() -> None:
+def test_would_you_ever_asks_unless_it_says_it_wonders() -> None:
+    """Every "would you ever" of blind text sets v10-v25 asked (text v25's single-5, "Would you
+    ever give our Anna a ring on the video there?", was read as a question)."""
+    assert read_request("Would you ever ring the plumber there?").asks_action
     assert not read_request("Would you ever go out to the garden? Just wondering.").asks_action
+    assert not read_request("Would you ever go out to the garden, do you reckon?").asks_action
     assert not read_request("Would you ever go out to the garden and look around on your own?").asks_action
 
 
