@@ -137,3 +137,18 @@ async def test_a_tool_without_a_question_runs_in_doubt() -> None:
     script: list[ScriptedReply] = [call("navigate_to", target="kitchen"), TextReply("unused")]
     (result,), _, _ = await conversation(script, ("go to the kitchen", True))
     assert [c.name for c in result.calls] == ["navigate_to"] and not result.outcomes[0].is_error
+
+
+async def test_a_doubtful_call_to_someone_the_robot_does_not_list_asks_which_one() -> None:
+    """Audio v16's compound-6: "ring Anna" heard as "ring gunner" made the robot ask "Shall I call
+    Gunner?", a question about nobody it knows. A doubtful call naming none of the contacts the
+    tool lists is refused as unclear: the robot asks which one it lists; typed, it runs and the
+    robot's own error says whom it can call."""
+    script: list[ScriptedReply] = [call("start_video_call", contact="Gunner"), TextReply("never used")]
+    (asked,), requests, state = await conversation(script, ("Hey Jarvis, ring gunner.", True))
+    assert asked.reply == "Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
+    assert asked.outcomes[0].result is not None and asked.outcomes[0].result["details"]["reason"] == "unclear"
+    assert requests == 1 and not in_call(state)
+    script = [call("start_video_call", contact="Gunner"), TextReply("I cannot call Gunner.")]
+    (typed,), _, _ = await conversation(script, ("Ring Gunner.", False))
+    assert typed.outcomes[0].error == "unknown_contact"

@@ -95,6 +95,28 @@ async def test_a_step_the_robot_could_not_do_is_said_before_the_next_thing_asked
     assert result.reply == "I cannot get to the balcony (the balcony door is closed). The projector is now on."
 
 
+async def test_what_the_robot_said_is_not_said_again() -> None:
+    """Audio v16's compound-6 answered "I am at the bathroom now. I am at the bathroom now.": the
+    drive's phrase, then the model's words before its next call, the same sentence."""
+    script: list[ScriptedReply] = [
+        call("navigate_to", target="kitchen"),
+        ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),), text="I am at the kitchen now."),
+    ]
+    result, _ = await scripted_turn(script, "Go to the kitchen and then switch the projector on.")
+    assert result.reply == "I am at the kitchen now. The projector is now on."
+
+
+async def test_quit_said_during_a_drive_lets_its_cancel_run() -> None:
+    """Audio v16's stop-2: "hold it, quit driving!" heard as "Oh, it's quit driving." reads as
+    talk; the model's cancel was refused, and the robot drove on."""
+    async with scripted_sim([call("cancel_navigation"), TextReply("All right.")]) as (robot, _server, backend):
+        assert robot.sim is not None
+        await robot.sim.apply_setup("driving")
+        result = await Assistant(backend, robot.tools).turn("Oh, it's quit driving.")
+        assert not robot.sim.state.moving
+    assert [o.error for o in result.outcomes] == [None]
+
+
 async def test_a_stop_is_refused_only_where_the_robot_stands_still() -> None:
     """"Hold it! Stay put!" reads as "carry on as you are" (a statement), and a drive asked in
     the same words would be refused; the robot's stop tool (voice role "stop") is not while the

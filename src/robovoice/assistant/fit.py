@@ -236,6 +236,14 @@ def listed(parameters: Mapping[str, Any]) -> dict[str, list[str]]:
     return found
 
 
+def unlisted(parameters: Mapping[str, Any], arguments: Mapping[str, Any]) -> bool:
+    """Some argument names none of the values its schema lists ("Gunner", the contacts being
+    Anna, Ben, Clara and Dr. Weber; "Weber" names one)."""
+    values = {arg: [w for value in found for w in words(value)] for arg, found in listed(parameters).items()}
+    return any(isinstance(value, str) and not named_in(values[arg], words(value))
+               for arg, value in arguments.items() if arg in values)
+
+
 def named_in(values: Iterable[str], heard: Iterable[str]) -> bool:
     """Some word heard names one of the words of `values` (by stem, or a stem that begins it:
     "the hall" names the hallway)."""

@@ -23,7 +23,17 @@ import re
 from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.fit import fits, fitting_tools, glosses, listed, named_in, subject_words, unsaid, usual
+from robovoice.assistant.fit import (
+    fits,
+    fitting_tools,
+    glosses,
+    listed,
+    named_in,
+    subject_words,
+    unlisted,
+    unsaid,
+    usual,
+)
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.assistant.reading import ClauseKind, Intent
 from robovoice.llm.base import ToolSpec
@@ -117,12 +127,13 @@ def model_only_texts() -> tuple[str, ...]:
 
 
 # Words that may ask the robot to stop or call off what it does although no clause reads as a
-# request ("Hold it! Stay put!", "never mind, don't go there after all"); only with one of them
+# request ("Hold it! Stay put!", "never mind, don't go there after all", "whoa, quit driving"); only with one of them
 # does the robot's stop or cancel run on such words ("don't mind the mess in the bedroom",
 # said while it drove, cancelled the drive in text test v13)
 _HALTING = re.compile(r"\b(?:stop\w*|halt|hold|stay|wait|hang on|freeze|forget|never ?mind|chang\w* (?:my|your) mind"
                       r"|don'?t (?:bother|go|move|drive)|enough|cancel\w*|call it off|after all|leave it|no further"
-                      r"|turn (?:back|round|around))\b", re.IGNORECASE)
+                      r"|turn (?:back|round|around)|quit(?:s|ting)?|abort\w*|call (?:(?:the|that|this) \w+ )?off"
+                      r"|whoa)\b", re.IGNORECASE)
 
 
 def halts(intent: Intent | None) -> bool:
@@ -190,11 +201,12 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
 
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
-    voice: Mapping[str, VoiceDecl] | None = None,
+    voice: Mapping[str, VoiceDecl] | None = None, *, doubtful: bool = False,
 ) -> dict[str, Any] | None:
     """The ``{error, message, hint, details}`` body that refuses this call, or None to let it run.
     `said`: the words of the conversation so far (what a "there" or a "her" can refer to);
-    `voice`: the tools' voice sections (the words a request for each uses, `fit`)."""
+    `voice`: the tools' voice sections (the words a request for each uses, `fit`); `doubtful`:
+    the words may be misheard (a value the tool does not list is then asked about)."""
     if intent is None or (spec is not None and spec.read_only):
         return None
     name = spec.name if spec is not None else "?"
@@ -218,6 +230,8 @@ def refusal(
             why = OTHER  # "plug yourself in" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
+        elif doubtful and spec is not None and unlisted(spec.parameters, arguments):
+            why = UNCLEAR  # "ring gunner", misheard: which one it knows, not a question about "Gunner"
         else:
             return None
     answer = why == ClauseKind.ABILITY.value and spec is not None and _about_this(intent, spec, arguments, said,

@@ -278,6 +278,7 @@ class Assistant:
                 await say(phrase, metrics, emit)
                 replies.append(phrase)
                 messages.append(ChatMessage("assistant", phrase))
+                model_only.add(phrase, short_copies=False)  # said: the model saying it again is not
                 if not more:
                     metrics.mark("phrase_answer")
                     break
@@ -358,7 +359,7 @@ class Assistant:
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
         voice = self.tools.voice()
-        refused = refusal(intent, spec, request.arguments, said, voice)
+        refused = refusal(intent, spec, request.arguments, said, voice, doubtful=doubtful)
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and halts(intent)):
             # the robot's stop or cancel when the words asked for nothing new but may mean it
