@@ -36,7 +36,7 @@ def _asks_about_kinds(text: str) -> bool:
 
 
 # Irish English asks with "would you ever …": "would you ever give Anna a ring there?" is a
-# request (every "would you ever" in blind text sets v10-v25 was one, 7 of 7), unless it says
+# request (every "would you ever" in blind text sets v10-v25 was one, 6 of 6), unless it says
 # that it wonders ("would you ever go out on the balcony, do you think?", "… at all?", "… by
 # yourself?"); "could you ever …" still asks whether it can
 _WOULD_YOU_EVER = re.compile(r"^would you ever (?!.*\b(?:(?:do|d'?) you (?:think|reckon|suppose)|at all|be able|manage"
