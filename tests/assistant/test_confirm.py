@@ -152,3 +152,14 @@ async def test_a_doubtful_call_to_someone_the_robot_does_not_list_asks_which_one
     script = [call("start_video_call", contact="Gunner"), TextReply("I cannot call Gunner.")]
     (typed,), _, _ = await conversation(script, ("Ring Gunner.", False))
     assert typed.outcomes[0].error == "unknown_contact"
+
+
+async def test_which_one_is_asked_after_the_rest_of_a_compound_request() -> None:
+    """Audio v16's compound-6 read again: the drive ran and said its phrase; the doubtful call to
+    "gunner" was refused, the model only repeated the drive's phrase (not said twice), and the
+    turn ended without anyone asking which one was meant."""
+    script: list[ScriptedReply] = [call("navigate_to", target="bathroom"), call("start_video_call", contact="Gunner"),
+                                   TextReply("I am at the bathroom now."), TextReply("never used")]
+    (result,), _, state = await conversation(script, ("First go to the bathroom, and ring gunner.", True))
+    assert result.reply == "I am at the bathroom now. Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
+    assert not in_call(state)

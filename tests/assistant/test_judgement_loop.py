@@ -201,13 +201,14 @@ async def test_a_tool_beside_a_request_for_another_is_refused_and_the_model_trie
 
 async def test_a_claim_of_a_refused_call_beside_an_action_that_ran_is_not_said() -> None:
     """The projector ran, the call was refused (nobody in the request is "him"), and the model
-    says both happened: the call's sentence is false and held back, the projector's is said."""
+    says both happened: the call's sentence is false and held back, the projector's is said
+    (once), and the robot asks whom it should call."""
     result, _ = await scripted_turn(
         [call("set_projector_power", on=True), call("start_video_call", contact="Anna"),
          TextReply("The projector is now on. The video call with Anna has started.")],
         "Put the projector on and then ring him.")
     assert [o.error for o in result.outcomes] == [None, NOT_REQUESTED]
-    assert "call" not in result.reply and result.reply.endswith("The projector is now on.")
+    assert result.reply == "The projector is now on. Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
 
 
 async def test_a_call_to_someone_nobody_named_is_asked_about_not_made_and_the_answer_is_acted_on() -> None:

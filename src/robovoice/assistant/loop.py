@@ -33,7 +33,7 @@ from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
 from robovoice.assistant.model_step import Emit, model_step, say
 from robovoice.assistant.motion_probe import PoseMotionProbe
-from robovoice.assistant.phrase import found_phrase, phrase_answer, result_phrase, robot_failed
+from robovoice.assistant.phrase import found_phrase, owed_question, phrase_answer, result_phrase, robot_failed
 from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
 from robovoice.assistant.reading import Intent
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
@@ -278,7 +278,7 @@ class Assistant:
                 await say(phrase, metrics, emit)
                 replies.append(phrase)
                 messages.append(ChatMessage("assistant", phrase))
-                model_only.add(phrase, short_copies=False)  # said: the model saying it again is not
+                model_only.add_said(phrase)  # said: the model saying it again is not
                 if not more:
                     metrics.mark("phrase_answer")
                     break
@@ -293,11 +293,12 @@ class Assistant:
                 # way to it, offered only the actions it names: told alone, it looked up again)
                 messages.append(next_step())
                 only = aside
-        held_now = self.confirmations.held  # a call held this turn: its question is the last thing said
-        if held_now is not None and not any(held_now.question in r for r in replies):
-            await say(held_now.question, metrics, emit)
-            replies.append(held_now.question)
-            messages.append(ChatMessage("assistant", held_now.question))
+        held_now = self.confirmations.held  # a call held this turn, or "which one?": the last thing said
+        question = held_now.question if held_now is not None else owed_question(outcomes)
+        if question is not None and not any(question in r for r in replies):
+            await say(question, metrics, emit)
+            replies.append(question)
+            messages.append(ChatMessage("assistant", question))
         if not fell_back and not any(r.strip() for r in replies):  # the person always hears an answer
             words_ = found_phrase(self.tools.voice(), calls, outcomes, read_only) or wordless_reply(outcomes, read_only)
             log.info("the model ended the turn without words; said %r", words_)

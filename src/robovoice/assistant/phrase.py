@@ -31,7 +31,7 @@ from __future__ import annotations
 from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
-from robovoice.assistant.gate import NOT_REQUESTED, own_words
+from robovoice.assistant.gate import NOT_REQUESTED, UNCLEAR, own_words
 from robovoice.assistant.reading import ClauseKind, Intent
 from robovoice.manifest.voice import VoiceDecl, fill, result_fields
 
@@ -78,6 +78,17 @@ def robot_failed(returned: ToolReturned) -> bool:
     """The robot could not do the call (an unknown place, a closed door), as opposed to a call
     the assistant itself refused or could not make."""
     return returned.is_error and returned.error not in _NOT_THE_ROBOTS
+
+
+def owed_question(outcomes: Sequence[ToolReturned]) -> str | None:
+    """The robot's own "Which one do you mean: …?" when the turn's last call was refused for
+    naming nobody it lists, and the turn went on past it (a compound request's next step, where
+    the model's words were a repeat): otherwise nobody asks it ("ring gunner", audio v16)."""
+    last = outcomes[-1] if outcomes else None
+    if last is None or last.error != NOT_REQUESTED or last.result is None:
+        return None
+    details = last.result.get("details")
+    return own_words(last.result) if isinstance(details, dict) and details.get("reason") == UNCLEAR else None
 
 
 def found_phrase(

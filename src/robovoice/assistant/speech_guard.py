@@ -108,6 +108,12 @@ class ModelOnlyText:
         for size in range(_SHORTEST_COPY if short_copies else COPIED_RUN_WORDS, COPIED_RUN_WORDS + 1):
             self._runs.update(tuple(words[i : i + size]) for i in range(len(words) - size + 1))
 
+    def add_said(self, text: str) -> None:
+        """Remember what the robot has said this turn (a tool's phrase): the model saying one of
+        its sentences again ("I am at the bathroom now.", a small model's echo) is not said twice."""
+        self.add(text, short_copies=False)
+        self._runs.update(words for s in re.split(r"(?<=[.!?])\s+", text) if len(words := tuple(_words(s))) >= 3)
+
     def add_hint(self, hint: str) -> None:
         """Remember a tool error's hint as model-only, all but what it tells the model to say
         ("tell the user the robot cannot get to the balcony"): that, said, is the answer, not the
