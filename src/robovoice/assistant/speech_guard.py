@@ -112,7 +112,8 @@ class ModelOnlyText:
         """Remember what the robot has said this turn (a tool's phrase): the model saying one of
         its sentences again ("I am at the bathroom now.", a small model's echo) is not said twice."""
         self.add(text, short_copies=False)
-        self._runs.update(words for s in re.split(r"(?<=[.!?])\s+", text) if len(words := tuple(_words(s))) >= 3)
+        sentences = (tuple(_words(s)) for s in re.split(r"(?<=[.!?])\s+", text))
+        self._runs.update(words for words in sentences if len(words) >= _SHORTEST_COPY)  # a short one whole
 
     def add_hint(self, hint: str) -> None:
         """Remember a tool error's hint as model-only, all but what it tells the model to say
