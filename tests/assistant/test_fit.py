@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from robovoice.assistant.fit import fits, fitting_tools, stem, unsaid
+from robovoice.assistant.fit import claimed_elsewhere, fits, fitting_tools, listed_names, stem, unsaid
 from robovoice.assistant.gate import NOT_REQUESTED, OTHER, UNCLEAR, own_words, refusal
 from robovoice.assistant.intent import read_request
 from robovoice.llm.base import ToolSpec
@@ -238,3 +238,24 @@ def test_a_word_for_a_tool_before_what_another_acts_on_does_not_fit_it(
                                   "Stop that!"])
 def test_a_stop_of_the_robot_itself_still_fits(text: str) -> None:
     assert refusal(read_request(text), SPECS["stop_robot"], {}, (), VOICE) is None
+
+
+NAMES = {name: listed_names(spec.description, spec.parameters) for name, spec in SPECS.items()}
+
+
+@pytest.mark.parametrize(("text", "claimed"), [
+    ("Could you put my son up on the screen for a chat?", True),  # "screen": the call's word too; Ben (son)
+    ("Bring Clara up on the display, would you?", False),  # "display" is the projector's word only
+    ("Put the screen on, then ring Anna.", False),  # the screen's clause names nobody
+    ("Get the projector on the screen for Anna.", False),  # the projector's own name
+])
+def test_a_word_two_tools_share_beside_a_value_one_lists_is_that_tools(text: str, claimed: bool) -> None:
+    assert claimed_elsewhere(read_request(text), "set_projector_power", {"on": True}, WORDS, NAMES) is claimed
+
+
+def test_the_gate_refuses_the_projector_for_a_call_on_the_screen() -> None:
+    spec = SPECS["set_projector_power"]
+    asked = read_request("Could you put my son up on the screen for a chat?")
+    body = refusal(asked, spec, {"on": True}, (), VOICE, tools=list(SPECS.values()))
+    assert body is not None and body["details"]["reason"] == OTHER and "start_video_call" in body["details"]["fits"]
+    assert refusal(asked, SPECS["start_video_call"], {"contact": "Ben"}, (), VOICE, tools=list(SPECS.values())) is None

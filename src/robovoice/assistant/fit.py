@@ -168,6 +168,31 @@ def fitting_tools(intent: Intent, declared: Mapping[str, Sequence[str]], but: st
                   if name != but and phrases and fits(intent, name, phrases, {}))
 
 
+def claimed_elsewhere(intent: Intent, name: str, arguments: Mapping[str, Any],
+                      declared: Mapping[str, Sequence[str]], values: Mapping[str, Collection[str]],
+                      said: Collection[str] = ()) -> bool:
+    """Every request clause that says this call's words says only words another tool declares
+    too, beside a value only that tool lists (`values`: each tool's stems naming its listed
+    values, `listed_names`): "get Ben up on the screen" is the call's "screen", not the
+    projector's (text test v25)."""
+    own = vocabulary(name, declared.get(name, ()), arguments)
+    claimed = False
+    for clause in _request_stems(intent, said):
+        hits = [phrase for phrase in own if _says(clause, phrase)]
+        if not hits:
+            continue
+        if not any(all(h in [_stems(p) for p in phrases] for h in hits) and set(clause) & set(values.get(tool, ()))
+                   for tool, phrases in declared.items() if tool != name):
+            return False  # this clause asks for this call in its own words
+        claimed = True
+    return claimed
+
+
+def listed_names(description: str, parameters: Mapping[str, Any]) -> set[str]:
+    """The stems that name the values a tool lists, with their other names: "Anna (daughter)"."""
+    return {n for found in listed(parameters).values() for v in found for n in _names_for(v, description)}
+
+
 # --- arguments somebody said -------------------------------------------------------------------
 
 _FUNCTION_WORDS = frozenset({"the", "a", "an", "of", "my", "your", "to", "in", "on", "at", "and"})

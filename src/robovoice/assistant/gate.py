@@ -24,10 +24,12 @@ from collections.abc import Collection, Mapping, Sequence
 from typing import Any
 
 from robovoice.assistant.fit import (
+    claimed_elsewhere,
     fits,
     fitting_tools,
     glosses,
     listed,
+    listed_names,
     named_in,
     subject_words,
     unlisted,
@@ -201,12 +203,13 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
 
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
-    voice: Mapping[str, VoiceDecl] | None = None, *, doubtful: bool = False,
+    voice: Mapping[str, VoiceDecl] | None = None, *, doubtful: bool = False, tools: Sequence[ToolSpec] = (),
 ) -> dict[str, Any] | None:
     """The ``{error, message, hint, details}`` body that refuses this call, or None to let it run.
     `said`: the words of the conversation so far (what a "there" or a "her" can refer to);
     `voice`: the tools' voice sections (the words a request for each uses, `fit`); `doubtful`:
-    the words may be misheard (a value the tool does not list is then asked about)."""
+    the words may be misheard (a value the tool does not list is then asked about); `tools`:
+    every tool offered (the values the others list: whose "screen" a request with "Ben" means)."""
     if intent is None or (spec is not None and spec.read_only):
         return None
     name = spec.name if spec is not None else "?"
@@ -226,8 +229,10 @@ def refusal(
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
-        elif not _fits(intent, name, arguments, said, declared, glossed):
-            why = OTHER  # "plug yourself in" and the projector
+        elif not _fits(intent, name, arguments, said, declared, glossed) or claimed_elsewhere(
+                intent, name, arguments, declared, {t.name: listed_names(t.description, t.parameters) for t in tools},
+                said):
+            why = OTHER  # "plug yourself in" and the projector; "get Ben up on the screen" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
         elif doubtful and spec is not None and unlisted(spec.parameters, arguments):

@@ -360,7 +360,8 @@ class Assistant:
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
         voice = self.tools.voice()
-        refused = refusal(intent, spec, request.arguments, said, voice, doubtful=doubtful)
+        refused = refusal(intent, spec, request.arguments, said, voice, doubtful=doubtful,
+                          tools=await self.tools.specs())
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and halts(intent)):
             # the robot's stop or cancel when the words asked for nothing new but may mean it
