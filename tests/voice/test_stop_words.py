@@ -36,14 +36,16 @@ def test_a_stop_phrase_with_fillers_around_it_is_a_stop(text: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["Wait, wait, stay there!", "Hold on, stay put.", "Okay, wait! Don't move!",
-                                  "Stay right there, please.", "Stop, stop, wait there."])
+                                  "Stay right there, please.", "Stop, stop, wait there.",
+                                  "Whoa, whoa, hold your horses!", "Hang on, stand still."])
 def test_several_stop_phrases_in_a_row_are_a_stop(text: str) -> None:
     # the words people use for "stop" beside "stop", one after another with or without commas
     assert is_stop_command(text)
 
 
 @pytest.mark.parametrize("text", ["Wait for me in the kitchen.", "Stay in the bedroom.", "Hold on to the call.",
-                                  "Wait, go to the kitchen.", "Don't move the projector.", "Stay there till I come."])
+                                  "Wait, go to the kitchen.", "Don't move the projector.", "Stay there till I come.",
+                                  "Hang on to the call.", "Stand still in the hallway."])
 def test_a_stop_word_with_a_request_is_not_a_stop(text: str) -> None:
     assert not is_stop_command(text)
 
