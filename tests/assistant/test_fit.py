@@ -259,3 +259,15 @@ def test_the_gate_refuses_the_projector_for_a_call_on_the_screen() -> None:
     body = refusal(asked, spec, {"on": True}, (), VOICE, tools=list(SPECS.values()))
     assert body is not None and body["details"]["reason"] == OTHER and "start_video_call" in body["details"]["fits"]
     assert refusal(asked, SPECS["start_video_call"], {"contact": "Ben"}, (), VOICE, tools=list(SPECS.values())) is None
+
+
+def test_a_drive_to_a_contact_is_refused_and_names_the_call() -> None:
+    tools = list(SPECS.values())
+    asked = read_request("Switch the projector on, then put my daughter up on it.")
+    body = refusal(asked, SPECS["navigate_to"], {"target": "Anna"}, (), VOICE, tools=tools)
+    assert body is not None and body["details"]["reason"] == OTHER and "start_video_call" in body["details"]["fits"]
+    # a call to a place is left to the robot's own error: the model is not pointed at a drive
+    assert refusal(read_request("Ring the bedroom."), SPECS["start_video_call"], {"contact": "bedroom"}, (), VOICE,
+                   tools=tools) is None
+    assert refusal(read_request("Go to Anna's room."), SPECS["navigate_to"], {"target": "Anna's room"}, (), VOICE,
+                   tools=tools) is None

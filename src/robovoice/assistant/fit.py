@@ -188,6 +188,20 @@ def claimed_elsewhere(intent: Intent, name: str, arguments: Mapping[str, Any],
     return claimed
 
 
+def value_owner(name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
+                values: Mapping[str, Collection[str]]) -> str | None:
+    """The other tool one of whose listed values this call's argument is, where this tool lists
+    no such value: a drive to "Ben" (text test v26, "get Ben up on it") is a call's argument."""
+    for arg, value in arguments.items():
+        said = {stem(w) for w in usual(words(value))} - _FUNCTION_WORDS if isinstance(value, str) else set()
+        if not said or not unlisted(parameters, {arg: value}):
+            continue
+        owner = next((tool for tool, names in values.items() if tool != name and said <= set(names)), None)
+        if owner is not None:
+            return owner
+    return None
+
+
 def listed_names(description: str, parameters: Mapping[str, Any]) -> set[str]:
     """The stems that name the values a tool lists, with their other names: "Anna (daughter)"."""
     return {n for found in listed(parameters).values() for v in found for n in _names_for(v, description)}

@@ -35,6 +35,7 @@ from robovoice.assistant.fit import (
     unlisted,
     unsaid,
     usual,
+    value_owner,
 )
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.assistant.reading import ClauseKind, Intent
@@ -216,6 +217,11 @@ def refusal(
     declared = {tool: section.words for tool, section in (voice or {}).items()}
     kind = intent.refusal
     why = kind.value if kind is not None else None
+    values = {t.name: listed_names(t.description, t.parameters) for t in tools}  # what each tool lists
+    # a drive to "Ben": a call's argument (never the other way round: a call to "the kitchen" is
+    # answered by the robot's own error, and the model is not pointed at a drive nobody asked for)
+    owner = value_owner(name, spec.parameters, arguments, values) if spec is not None else None
+    owner = owner if owner is None or (voice or {}).get(owner, VoiceDecl()).role != "motion" else None
     if why is None:
         named = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
         heard = [*said, *intent.words()]  # what a "there", a "her" or a listed value can refer to
@@ -230,8 +236,7 @@ def refusal(
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
         elif not _fits(intent, name, arguments, said, declared, glossed) or claimed_elsewhere(
-                intent, name, arguments, declared, {t.name: listed_names(t.description, t.parameters) for t in tools},
-                said):
+                intent, name, arguments, declared, values, said) or owner:
             why = OTHER  # "plug yourself in" and the projector; "get Ben up on the screen" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
@@ -242,7 +247,7 @@ def refusal(
     answer = why == ClauseKind.ABILITY.value and spec is not None and _about_this(intent, spec, arguments, said,
                                                                                   declared)
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
-    others = fitting_tools(intent, declared, name) if why == OTHER else []
+    others = sorted({*fitting_tools(intent, declared, name), *([owner] if owner else [])}) if why == OTHER else []
     hint = _HINTS[why] + (f" What they asked for fits {' or '.join(others)}." if others else "")
     # the values the person can choose from, for the question `question` asks
     choices = [v for arg, values in listed(spec.parameters).items() if arg in arguments
