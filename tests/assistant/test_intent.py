@@ -548,3 +548,22 @@ def test_once_after_a_request_is_its_outcome_not_something_else_first() -> None:
     """"Call Ben, and once he's on, put the projector on" (an eval text): not put off."""
     steps = read_request("Ring Clara, and once she's on, switch the radio off.").steps
     assert steps[0] == "Ring Clara" and steps[-1] == "switch the radio off"
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Turn the projector on before you go to the kitchen.", ("Turn the projector on", "go to the kitchen")),
+    ("Ring Anna before you head off to your charger, pet.", ("Ring Anna", "head off to your charger")),
+    ("Before you call Clara, nip into the hallway.", ("nip into the hallway", "call Clara")),
+    ("Ring Ben before you forget.", ("Ring Ben before you forget",)),  # nothing more asked
+])
+def test_a_request_then_before_you_in_one_breath_is_that_then_the_next(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v26: "switch the projector off before you head to the bedroom" was one step."""
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize("text", ["Go to the bedroom and, uh, then ring Clara, I suppose.",
+                                  "Go to the bedroom, uhm, then ring Clara, you know."])
+def test_a_hedge_or_an_uh_is_no_step(text: str) -> None:
+    """Text test v26: "…, uh, then go wait at the front door for her, I guess" made "uh" and
+    "I guess" steps of their own, and the model acted on them."""
+    assert [s.lower() for s in read_request(text).steps] == ["go to the bedroom", "ring clara"]

@@ -19,6 +19,9 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
+# "call her and, uh, then …": a conjunction left at the end by the comma after it (not at the
+# very end: "Hey Jarvis, go and" was cut off)
+_TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
 
 
 # "go and charge", "come and find me": one request whose verb follows the "and", not two
@@ -47,5 +50,5 @@ _CALL_COMMA = re.compile(r"(?<!\bthe )(?<!\ba )(?<!\bvideo )\b((?i:call|ring|pho
 def split_clauses(text: str) -> list[str]:
     text = _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip()))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
-    parts = [_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)]
-    return [p for p in parts if p]
+    parts = [p for p in (_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)) if p]
+    return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]

@@ -87,6 +87,11 @@ ARRIVED = re.compile(r"\s+((?:once|when|after|as soon as) you(?:'ve| have) (?:go
                      r"|been|gone|popped|nipped)(?: yourself| over| down| up| through| across| back)*"
                      r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?)\s*$", re.IGNORECASE)
 
+# "Switch the projector off before you head to the bedroom" (text test v26), in one breath:
+# what comes after "before you" is the next step ("before you ring Clara, …" said first puts
+# the call after what follows: `intent`); two words at least ("… before you forget" asks nothing).
+BEFORE_YOU_DO = re.compile(r"(?<=\w)\s+before you\s+(\w+ \w.*)$", re.IGNORECASE)
+
 # A condition after the request ("can you find your way back to your charger when you're running
 # low?", "could you ring the doctor in an emergency?"): the same, said the other way round.
 _LATE_CONDITION = re.compile(r"\s((?:if|when|whenever|in case)\s.+)$", re.IGNORECASE)

@@ -29,6 +29,7 @@ import re
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
     ARRIVED,
+    BEFORE_YOU_DO,
     CONDITION,
     COURTESY,
     EVENT_FIRST,
@@ -60,6 +61,7 @@ from robovoice.assistant.lexicon import (
     WITHDRAWAL,
     YOU_DO,
     base_form,
+    fragment,
     words,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
@@ -251,22 +253,22 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if kind is ClauseKind.REQUEST and conditional(bare):
             kind = ClauseKind.ABILITY  # "could you ring the doctor in an emergency?": what it would do
         if not bare and _NOW.search(part) and clauses and clauses[-1].kind is ClauseKind.STATEMENT \
-                and _fragment(clauses[-1].text):
+                and fragment(clauses[-1].text):
             clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "Bedroom. Now, please."
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
         previous = clauses[at] if (at := _last_said(clauses)) is not None else None
         ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()))  # "first the kitchen"
         you_do = YOU_DO.match(bare) and IMPERATIVE_SHAPE.match(bare[4:])  # "…, then you go to the hallway"
-        if kind is ClauseKind.STATEMENT and (ordered or ((_fragment(part) or you_do) and (
+        if kind is ClauseKind.STATEMENT and (ordered or ((fragment(part) or you_do) and (
                 corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))
-                or (corrected and _fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
+                or (corrected and fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
         if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
-        if kind is ClauseKind.REQUEST and _JUST.match(part.strip()) and _fragment(part) and any(
+        if kind is ClauseKind.REQUEST and _JUST.match(part.strip()) and fragment(part) and any(
                 c.kind is kind and set(words(bare)) - _ARTICLES <= set(words(c.text)) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, forget about the projector, just the bedroom": asked already
         if kind is ClauseKind.REQUEST and _BACK_TO_SOMEONE.match(part) and not _NAME.search(part) and any(
@@ -285,12 +287,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses = [Clause(c.text, ClauseKind.NEGATED if i in named else
                               ClauseKind.REQUEST if i in undone else c.kind) for i, c in enumerate(clauses)]
             kind, corrected = ClauseKind.NEGATED, True  # "…, not the kitchen, I meant the living room"
-        if kind is ClauseKind.REQUEST and undone and _fragment(part):
+        if kind is ClauseKind.REQUEST and undone and fragment(part):
             # "turn the projector on, then go to the living room. No, the bedroom": the place
             # corrects the last step ("go to the living room, then the kitchen, no, the
             # hallway": the kitchen), not the ones before; "just" the place, the last request
             # with the fragments after its verb ("call Clara and then Ben. No, just Ben.")
-            start = max((i for i in undone if not _fragment(clauses[i].text)), default=0) \
+            start = max((i for i in undone if not fragment(clauses[i].text)), default=0) \
                 if _JUST.match(part.strip()) else max(undone)
             clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and i < start else c
                        for i, c in enumerate(clauses)]
@@ -350,10 +352,11 @@ _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that doe
 def _arrival_first(parts: list[str]) -> list[str]:
     """A request that ends on where the robot will have got to ("give Anna a ring once you've
     made it to the bedroom") as two clauses in the order said: the arrival (a `SEQUENCE`
-    clause, which goes first) after the request."""
+    clause, which goes first) after the request; one that ends on what it does next ("switch
+    the projector off before you head to the bedroom") as that request, then the next."""
     out: list[str] = []
     for part in parts:
-        late = ARRIVED.search(part)
+        late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part)
         if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:
             out += [part[:late.start()], late.group(1)]
         else:
@@ -390,11 +393,3 @@ def _named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int]
     hit = {i for i, c in enumerate(clauses)
            if (c.kind is ClauseKind.REQUEST or i in undone) and named & set(words(c.text))}
     return hit or None
-
-
-def _fragment(part: str) -> bool:
-    """A verbless continuation: "the bedroom", "to the front door", "Ben"."""
-    text = FILLER.sub("", part.strip()).strip().lower()
-    text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
-    return bool(re.match(r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?"
-                         r"\w+(?: \w+)?$", text))

@@ -18,7 +18,7 @@ FILLER = re.compile(
     r"^(?:(?:please|kindly|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|"
     r"firstly|next|finally|just|off you|i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
-    r"erm|er|um|hmm|what am i saying|what was i thinking|silly me|y'all)\b[\s,]*)+",
+    r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all)\b[\s,]*)+",
     re.IGNORECASE,
 )
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please)?|please|thanks|thank you|"
@@ -121,3 +121,16 @@ LATER_ONLY = re.compile(r"^(?:(?:later(?: on)?|tomorrow(?: morning| afternoon| e
 RHETORICAL = re.compile(r"^(?:can|could|would|will) (?:you|ye) (?:ever )?(?:believe|imagine|credit)\b"
                         r"(?: (?:it|that|this|them|him|her|the (?:cheek|nerve)(?: of (?:it|him|her|them))?))?\W*$",
                         re.IGNORECASE)
+
+# A hedge said after a request: "…, then go and wait at the front door for her, I guess" (text
+# test v26). It asks nothing, though it is short enough to look like "…, then the bedroom".
+_HEDGE = re.compile(r"^(?:i (?:guess|suppose|think|reckon|expect|imagine)|you know|y'know|if you like|or something"
+                    r"|or whatever|i'd say|mind you)$", re.IGNORECASE)
+
+
+def fragment(part: str) -> bool:
+    """A verbless continuation: "the bedroom", "to the front door", "Ben" (not a hedge: "I guess")."""
+    text = FILLER.sub("", part.strip()).strip().lower()
+    text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
+    return not _HEDGE.match(text) and bool(re.match(
+        r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))
