@@ -279,6 +279,19 @@ async def test_a_request_for_a_place_only_looked_up_is_asked_for_once_more() -> 
     assert [c.name for c in result.calls] == ["get_robot_pose"] and len(server.requests) == 2  # once only
 
 
+async def test_an_irish_would_you_ever_is_asked_for_once_more_like_any_request() -> None:
+    """Dev ever-4 and text test v26: "Would you ever nip into the bathroom and check the tap?"
+    looked up the pose and the camera and answered. The reading takes it for a request (asks_ever),
+    so it is asked for again like one; "would you ever …, do you think?" wonders and is not."""
+    result, server = await scripted_turn(
+        [call("get_robot_pose"), call("navigate_to", target="bathroom"), TextReply("On my way.")],
+        "Would you ever pop into the bathroom and look at the tap for me?")
+    assert [c.name for c in result.calls] == ["get_robot_pose", "navigate_to"]
+    result, server = await scripted_turn([call("get_robot_pose"), TextReply("I could.")],
+                                         "Would you ever pop into the bathroom at all, do you think?")
+    assert [c.name for c in result.calls] == ["get_robot_pose"] and len(server.requests) == 2
+
+
 async def test_a_look_up_or_a_request_naming_no_place_is_not_asked_for_again() -> None:
     """Only a request that names a value an action takes, not said as a question, is asked
     again: "tell me about the kitchen" is a look-up, "have a rest" names nothing an action

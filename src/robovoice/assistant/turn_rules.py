@@ -10,7 +10,7 @@ from collections.abc import Collection, Mapping, Sequence
 from robovoice.assistant.events import ToolCalled, ToolReturned
 from robovoice.assistant.fit import listed, named_whole
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
-from robovoice.assistant.hypothetical import asked_as_question
+from robovoice.assistant.hypothetical import asked_as_question, asks_ever
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.reading import ClauseKind
 from robovoice.llm.base import ChatMessage, ToolCallRequested, ToolSpec
@@ -79,8 +79,9 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
 
 def naming(step: str, specs: Sequence[ToolSpec]) -> list[str]:
     """The actions that list, as an argument's value, something the step names whole ("the
-    hallway": navigate_to); none for a step said as a question (see `unacted`)."""
-    if asked_as_question(step):
+    hallway": navigate_to); none for a step said as a question (see `unacted`), unless it is a
+    "would you ever …" the reading took for the request it is in Ireland (dev ever-4)."""
+    if asked_as_question(step) and not asks_ever(step, step):
         return []
     heard = words(step)
     return [s.name for s in specs if not s.read_only and any(
