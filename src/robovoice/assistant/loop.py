@@ -359,9 +359,8 @@ class Assistant:
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
-        voice = self.tools.voice()
-        refused = refusal(intent, spec, request.arguments, said, voice, doubtful=doubtful,
-                          tools=await self.tools.specs())
+        tools, voice = await self.tools.specs(), self.tools.voice()
+        refused = refusal(intent, spec, request.arguments, said, voice, doubtful=doubtful, tools=tools)
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and halts(intent)):
             # the robot's stop or cancel when the words asked for nothing new but may mean it
