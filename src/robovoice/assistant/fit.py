@@ -176,13 +176,14 @@ def claimed_elsewhere(intent: Intent, name: str, arguments: Mapping[str, Any],
     values, `listed_names`): "get Ben up on the screen" is the call's "screen", not the
     projector's (text test v25)."""
     own = vocabulary(name, declared.get(name, ()), arguments)
+    theirs = {tool: [_stems(p) for p in phrases] for tool, phrases in declared.items() if tool != name}
     claimed = False
     for clause in _request_stems(intent, said):
         hits = [phrase for phrase in own if _says(clause, phrase)]
         if not hits:
             continue
-        if not any(all(h in [_stems(p) for p in phrases] for h in hits) and set(clause) & set(values.get(tool, ()))
-                   for tool, phrases in declared.items() if tool != name):
+        if not any(all(h in stems for h in hits) and set(clause) & set(values.get(tool, ()))
+                   for tool, stems in theirs.items()):
             return False  # this clause asks for this call in its own words
         claimed = True
     return claimed

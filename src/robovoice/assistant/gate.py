@@ -217,12 +217,12 @@ def refusal(
     declared = {tool: section.words for tool, section in (voice or {}).items()}
     kind = intent.refusal
     why = kind.value if kind is not None else None
-    values = {t.name: listed_names(t.description, t.parameters) for t in tools}  # what each tool lists
-    # a drive to "Ben": a call's argument (never the other way round: a call to "the kitchen" is
-    # answered by the robot's own error, and the model is not pointed at a drive nobody asked for)
-    owner = value_owner(name, spec.parameters, arguments, values) if spec is not None else None
-    owner = owner if owner is None or (voice or {}).get(owner, VoiceDecl()).role != "motion" else None
+    owner: str | None = None  # the other tool that lists this call's value (a drive to "Ben": the call)
     if why is None:
+        values = {t.name: listed_names(t.description, t.parameters) for t in tools}  # what each tool lists
+        owner = value_owner(name, spec.parameters, arguments, values) if spec is not None else None
+        if owner is not None and (voice or {}).get(owner, VoiceDecl()).role == "motion":
+            owner = None  # a call to "the kitchen" is the robot's own error: the model is never pointed at a drive
         named = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
         heard = [*said, *intent.words()]  # what a "there", a "her" or a listed value can refer to
         glossed = _glossed(spec, arguments)  # the values' other names: "the loo" is the bathroom
