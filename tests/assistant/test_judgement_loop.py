@@ -259,6 +259,31 @@ async def test_a_refused_call_made_again_is_not_run_and_the_next_thing_asked_is_
     assert hint["role"] == "user" and "get yourself back on your charger" in hint["content"]
 
 
+async def test_the_action_just_done_made_again_is_not_run_and_not_said_twice() -> None:
+    # text test v27: "Go on then" read as a step of its own, so the model, told the next thing
+    # asked ("take yourself off to the bedroom"), drove to the bedroom a second time
+    script: list[ScriptedReply] = [call("navigate_to", target="bedroom"), call("navigate_to", target="bedroom"),
+                                   TextReply("unused")]
+    async with scripted_sim(script) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn(
+            "Go on then, take yourself off to the bedroom, there's a good lad.")
+        assert robot.sim is not None
+        assert robot.sim.state.nearest_place == "bedroom"
+    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+        ("navigate_to", None)]  # the repeat was not run
+    assert len(server.requests) == 2  # and the turn ended: the arrival was said already
+    assert result.reply.count("bedroom") == 1
+
+
+async def test_an_action_made_again_after_it_failed_is_run() -> None:
+    # a failed call is no "done": the model may try it again (the robot decides)
+    script: list[ScriptedReply] = [call("end_video_call"), call("end_video_call"), TextReply("There is no call.")]
+    async with scripted_sim(script) as (robot, _server, backend):
+        result = await Assistant(backend, robot.tools).turn("Hang up the call, please.")
+    assert [c.name for c in result.calls] == ["end_video_call", "end_video_call"]
+    assert result.outcomes[0].is_error
+
+
 async def test_a_request_for_a_place_only_looked_up_is_asked_for_once_more() -> None:
     """"Wait for me in the bedroom" (the shape of dev nav-hallway-1, look-1…5): the small model
     looks up its pose and answers as if it had gone. A request naming a place an action lists,

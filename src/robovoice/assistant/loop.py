@@ -40,14 +40,9 @@ from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import MODEL_ONLY, TurnActions
 from robovoice.assistant.turn_rules import (
     asked_left,
-    bounded_history,
     call_key,
     done,
-    is_repeat,
     offered,
-    on_the_way,
-    refit,
-    unacted,
     wordless_reply,
 )
 from robovoice.errors import LLMError
@@ -149,6 +144,7 @@ class Assistant:
         steps = 0
         looked_up: set[str] = set()  # read-only calls (name and arguments) made since the last action
         refused: set[str] = set()  # calls (name and arguments) the check before acting refused this turn
+        acted = ""  # the last action that ran and did not fail (made again next: not run again)
         answer_now = resume = False  # resume: a step the robot could not do is said before the next
         model_only = MODEL_ONLY.copy()  # what is never said: the prompt, hints, this turn's tool hints
         for tool in (tools := await self.tools.specs()):  # and their descriptions (a small model reads them back)
@@ -193,7 +189,7 @@ class Assistant:
                 # a call to a tool this step did not offer (a server need not keep to the offer)
                 log.info("the model called %s, not offered on this step; not run", [r.name for r in requested])
                 requested = [r for r in requested if r.name in by_name]
-            if requested and all(is_repeat(r, by_name, looked_up) for r in requested):
+            if requested and all(turn_rules.is_repeat(r, by_name, looked_up) for r in requested):
                 # the same look-up again: its result is already in front of the model (a small
                 # model on a strict call grammar repeats it until tools are withdrawn). The
                 # repeat is not run; the model answers now, or does the next thing asked.
@@ -202,14 +198,17 @@ class Assistant:
                 if not text:
                     answer_now = not asked_left(asked, stepped, passed)
                     continue
-            if requested and all(call_key(r) in refused for r in requested):
-                # a call refused already, made again: not run, and its step is passed over, so a
-                # garbled step ("join the project to look") does not keep the next ones from being done
-                log.info("the model made the refused %s again; not run", [r.name for r in requested])
-                requested, passed = [], passed + 1
+            if requested and all(call_key(r) in refused or call_key(r) == acted for r in requested):
+                # a call refused already, or the action just done, made again: not run, and its step
+                # is passed over, so a garbled step ("join the project to look") does not keep the next
+                # ones from being done, and "go on then, off to the bedroom" drives there once
+                log.info("the model made the refused or done %s again; not run", [r.name for r in requested])
+                redone, requested, passed = call_key(requested[0]) == acted, [], passed + 1
                 if not text:
                     if asked_left(asked, stepped, passed):
                         messages.append(next_step())
+                    elif redone and replies:  # what was done is said already
+                        break
                     else:
                         answer_now = True
                     continue
@@ -246,11 +245,12 @@ class Assistant:
                     looked_up.add(call_key(request))
                 else:
                     looked_up.clear()  # an action may change what a look-up returns
+                    acted = "" if returned.is_error else call_key(request)
             calls.extend(c for c, _ in ran)
             outcomes.extend(r for _, r in ran)
             aside: list[str] = []  # the actions a thing asked names, when a look-up ran on the way to it
             for _, r in ran:  # a look-up on the way to a place or a person asked: that is still to do
-                if way := on_the_way(r, read_only, asked, lookups, done(stepped, passed), tools):
+                if way := turn_rules.on_the_way(r, read_only, asked, lookups, done(stepped, passed), tools):
                     aside = way
                 else:
                     stepped.append(r)
@@ -262,9 +262,9 @@ class Assistant:
             more = asked_left(asked, stepped, passed) and step < max_steps - 2
             # only looked up, though a place or a person an action lists was asked for (an answer
             # in words alone is not asked again: there a misread question would be made an action)
-            left = None if more or nudged or step >= max_steps - 2 else unacted(asked, lookups, tools, calls)
+            left = None if more or nudged or step >= max_steps - 2 else turn_rules.unacted(asked, lookups, tools, calls)
             # the call did not fit what was asked: the request is asked for once more, offered what fits
-            again = not (more or nudged or left is not None) and step < max_steps - 2 and refit(
+            again = not (more or nudged or left is not None) and step < max_steps - 2 and turn_rules.refit(
                 asked, stepped, passed, fitting)
             nudged = nudged or again
             more = more or left is not None or again
@@ -397,4 +397,4 @@ class Assistant:
 
     def _remember(self, turn_messages: Sequence[ChatMessage]) -> None:
         """Keep a bounded history that starts at a user message (`turn_rules.bounded_history`)."""
-        self._history = bounded_history(turn_messages, self.max_history_messages)
+        self._history = turn_rules.bounded_history(turn_messages, self.max_history_messages)
