@@ -194,9 +194,8 @@ async def test_a_tool_beside_a_request_for_another_is_refused_and_the_model_trie
         ("set_projector_power", NOT_REQUESTED), ("return_to_dock", None)]
     tool_message = server.requests[1].messages[-2]  # then the request once more (`turn_rules.refit`)
     assert tool_message["role"] == "tool" and "or return_to_dock." in tool_message["content"]
-    offered = server.requests[1].tool_names  # the next step offers what fits, and the look-ups
-    assert {"return_to_dock", "navigate_to", "get_battery_state"} <= set(offered)
-    assert not {"set_projector_power", "start_video_call"} & set(offered)
+    offered = server.requests[1].tool_names  # the request asked once more: only what fits
+    assert sorted(offered) == ["navigate_to", "return_to_dock"]
 
 
 async def test_a_claim_of_a_refused_call_beside_an_action_that_ran_is_not_said() -> None:
@@ -331,8 +330,9 @@ async def test_a_look_up_or_a_request_naming_no_place_is_not_asked_for_again() -
 async def test_a_request_whose_call_did_not_fit_is_asked_for_once_more_with_what_fits() -> None:
     """Dev dev-single-75 (text test v21: "Off you pop and plug yourself in." rang the doctor,
     refused as not fitting; offered the dock, the model answered "I did not ask for a video
-    call."). The request is asked for once more, offered only what fits and the look-ups;
-    once only, and not for a request said as a question."""
+    call."). The request is asked for once more, offered only what fits (text test v26: "…,
+    isn't it? Off you go and get yourself topped up.", offered the look-ups too, read the battery
+    and answered the remark); once only, and not for a request said as a question."""
     hint = "Now do the next thing I asked: plug yourself in."
     result, server = await scripted_turn(
         [call("start_video_call", contact="Ben"), call("return_to_dock"), TextReply("Off I go.")],
@@ -340,13 +340,13 @@ async def test_a_request_whose_call_did_not_fit_is_asked_for_once_more_with_what
     assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
         ("start_video_call", NOT_REQUESTED), ("return_to_dock", None)]
     assert server.requests[1].last_user_text == hint
-    assert "return_to_dock" in server.requests[1].tool_names
-    assert "start_video_call" not in server.requests[1].tool_names
+    assert server.requests[1].tool_names == ["return_to_dock"]
     result, server = await scripted_turn(
-        [call("start_video_call", contact="Ben"), call("get_battery_state"), TextReply("I'm at 80 percent.")],
+        [call("start_video_call", contact="Ben"), call("get_battery_state"), TextReply("Sorry.")],
         "Away with you and plug yourself in.")
-    assert [o.error for o in result.outcomes] == [NOT_REQUESTED, None] and len(server.requests) == 3
-    assert [m["content"] for m in server.requests[2].messages].count(hint) == 1  # once only
+    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]  # a look-up not offered is not run
+    assert "get_battery_state" not in [c.name for c in result.calls]
+    assert [m["content"] for m in server.requests[-1].messages].count(hint) == 1  # once only
     result, server = await scripted_turn(  # a call to a tool the step did not offer is not run
         [call("start_video_call", contact="Ben"), call("set_projector_power", on=True), TextReply("Sorry.")],
         "Away with you and plug yourself in.")

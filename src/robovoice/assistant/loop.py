@@ -292,7 +292,7 @@ class Assistant:
                 # is told which of the things the user asked comes next (after a look-up on the
                 # way to it, offered only the actions it names: told alone, it looked up again)
                 messages.append(next_step())
-                only = aside
+                only = aside or (fitting if again else [])  # asked once more: offered only what fits
         held_now = self.confirmations.held  # a call held this turn, or "which one?": the last thing said
         question = held_now.question if held_now is not None else owed_question(outcomes)
         if question is not None and not any(question in r for r in replies):

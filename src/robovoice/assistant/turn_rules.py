@@ -113,7 +113,8 @@ def _reason(outcome: ToolReturned) -> str | None:
 def offered(specs: Sequence[ToolSpec], lookup: bool, fitting: Collection[str] = ()) -> list[ToolSpec]:
     """The tools offered on a step: on a compound request's look-up ("tell me where you are,
     then …") only the read-only ones, so nothing acts on it; after a call was refused for
-    not fitting the request, the read-only ones and those that fit it (`refused_for_fit`)."""
+    not fitting the request, the read-only ones and those that fit it (`refused_for_fit`; the
+    request asked for once more, `refit`, is offered only those that fit)."""
     return [s for s in specs if s.read_only or not (lookup or (fitting and s.name not in fitting))]
 
 
