@@ -52,7 +52,7 @@ async def test_chat_through_a_server_shows_calls_and_answers() -> None:
     assert code == 0, err
     assert "→ navigate_to(target='kitchen')" in out
     assert "← navigate_to ok" in out and '"arrived": "kitchen"' in out
-    assert "robot> I am at the kitchen now." in out  # the drive's success phrase
+    assert "robot> I am in the kitchen now." in out  # the drive's success phrase
 
 
 async def test_chat_with_nothing_reachable_says_the_fallback_within_the_deadline() -> None:

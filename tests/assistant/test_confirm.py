@@ -159,7 +159,7 @@ async def test_which_one_is_asked_after_the_rest_of_a_compound_request() -> None
     "gunner" was refused, the model only repeated the drive's phrase (not said twice), and the
     turn ended without anyone asking which one was meant."""
     script: list[ScriptedReply] = [call("navigate_to", target="bathroom"), call("start_video_call", contact="Gunner"),
-                                   TextReply("I am at the bathroom now."), TextReply("never used")]
+                                   TextReply("I am in the bathroom now."), TextReply("never used")]
     (result,), _, state = await conversation(script, ("First go to the bathroom, and ring gunner.", True))
-    assert result.reply == "I am at the bathroom now. Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
+    assert result.reply == "I am in the bathroom now. Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
     assert not in_call(state)

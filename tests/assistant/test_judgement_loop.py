@@ -72,7 +72,7 @@ async def test_a_compound_request_is_carried_out_step_by_step() -> None:
     assert server.requests[0].last_user_text == "One thing at a time, in order. First: Go to the kitchen."
     assert server.requests[1].last_user_text == "Now do the next thing I asked: switch the projector on."
     # each action's own phrase said what happened: no model step only to word it
-    assert result.reply == "I am at the kitchen now. The projector is now on."
+    assert result.reply == "I am in the kitchen now. The projector is now on."
     assert len(server.requests) == 2
 
 
@@ -96,14 +96,14 @@ async def test_a_step_the_robot_could_not_do_is_said_before_the_next_thing_asked
 
 
 async def test_what_the_robot_said_is_not_said_again() -> None:
-    """Audio v16's compound-6 answered "I am at the bathroom now. I am at the bathroom now.": the
+    """Audio v16's compound-6 answered "I am in the bathroom now. I am in the bathroom now.": the
     drive's phrase, then the model's words before its next call, the same sentence."""
     script: list[ScriptedReply] = [
         call("navigate_to", target="kitchen"),
-        ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),), text="I am at the kitchen now."),
+        ToolCallReply((ScriptedCall("set_projector_power", {"on": True}),), text="I am in the kitchen now."),
     ]
     result, _ = await scripted_turn(script, "Go to the kitchen and then switch the projector on.")
-    assert result.reply == "I am at the kitchen now. The projector is now on."
+    assert result.reply == "I am in the kitchen now. The projector is now on."
 
 
 async def test_quit_said_during_a_drive_lets_its_cancel_run() -> None:

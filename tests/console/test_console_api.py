@@ -37,7 +37,7 @@ async def test_say_returns_the_turn_and_the_websocket_streams_it_in_order() -> N
             assert response.status_code == 200, response.text
             turn = response.json()
             assert turn["calls"] == [{"name": "navigate_to", "arguments": {"target": "kitchen"}}]
-            assert turn["reply"] == "I am at the kitchen now."  # the drive's success phrase
+            assert turn["reply"] == "I am in the kitchen now."  # the drive's success phrase
             kinds = _kinds(turn["events"])
             assert kinds[0] == "TurnStarted" and kinds[-1] == "TurnFinished"
             assert kinds.index("ToolCalled") < kinds.index("ToolReturned") < kinds.index("SentenceReady")

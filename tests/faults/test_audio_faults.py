@@ -147,7 +147,7 @@ async def test_a_wav_that_ends_mid_turn_lets_the_turn_finish(tmp_path: Path) -> 
     assert not state.moving and state.nearest_place == "kitchen"
     finished = r.log.of(VoiceTurnFinished)
     assert len(finished) == 1 and not finished[0].cancelled and finished[0].result is not None
-    assert finished[0].result.reply == "I am at the kitchen now."  # the drive's success phrase
+    assert finished[0].result.reply == "I am in the kitchen now."  # the drive's success phrase
     assert guard.events == [] and guard.failure is None  # a file that ends is not a fault
 
 

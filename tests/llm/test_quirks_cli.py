@@ -43,7 +43,7 @@ async def test_chat_against_llama_cpp_python_chatml_function_calling_quirks() ->
     assert "→ get_battery_state()" in out and "← get_battery_state ok" in out
     # the figure is the battery's own (the drive drains it: 80 or 81 % by the machine's speed)
     arrived, battery = robot_lines(out)
-    assert arrived == "robot> I am at the kitchen now."
+    assert arrived == "robot> I am in the kitchen now."
     assert re.fullmatch(r"robot> My battery is at 8\d percent\.", battery), battery
     assert "functions." not in out and "Traceback" not in err
     assert [r.body["stream"] for r in server.requests] == [True, False, False, False]
@@ -60,7 +60,7 @@ async def test_chat_against_a_hermes_server_that_writes_calls_as_tool_call_tags(
         code, out, err = await chat(server, "please drive to the kitchen\n")
     assert code == 0, err
     assert "→ navigate_to(target='kitchen')" in out and '"arrived": "kitchen"' in out
-    assert robot_lines(out) == ["robot> On my way to the kitchen.", "robot> I am at the kitchen now."]
+    assert robot_lines(out) == ["robot> On my way to the kitchen.", "robot> I am in the kitchen now."]
     assert "tool_call" not in out and '"name"' not in out and "Traceback" not in err
     assert server.busy_sent == 1 and len(server.requests) == 2  # the busy answer, then one model step
 

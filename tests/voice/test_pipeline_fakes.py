@@ -313,7 +313,7 @@ async def test_long_action_gives_throttled_progress_then_the_result(
     progress = [e.text for e in spoken if e.kind == "progress"]
     assert progress[0] == "On my way to the kitchen."
     assert 2 <= len(progress) <= 8 and all(p.startswith("Still on my way") for p in progress[1:])
-    assert spoken[-1].text == "I am at the kitchen now." and spoken[-1].kind == "reply"  # the drive's phrase
+    assert spoken[-1].text == "I am in the kitchen now." and spoken[-1].kind == "reply"  # the drive's phrase
 
 
 async def test_fallback_is_spoken_when_no_backend_answers(

@@ -168,7 +168,8 @@ class NavigationNode:
             await previous.wait_ended(HALT_WAIT_S)
         start = self._body.pose.point
         if start.distance_to(place.position) <= ARRIVAL_TOLERANCE_M:
-            return {"target": place.name, "arrived": place.name, "distance_m": 0.0, "duration_s": 0.0,
+            return {"target": place.name, "arrived": place.name, "where": place.where, "distance_m": 0.0,
+                    "duration_s": 0.0,
                     "already_there": True, "message": f"already at the {place.name}"}
 
         motion = self._body.begin_motion(f"drive to the {place.name}")
@@ -210,8 +211,8 @@ class NavigationNode:
         duration = self._clock.now() - started
         log.info("arrived at the %s after %.1f s", place.name, duration)
         # `target` is the place as the robot resolved it ("lounge" -> "living room")
-        return {"target": place.name, "arrived": place.name, "distance_m": round(drive.total_m, 2),
-                "duration_s": round(duration, 1)}
+        return {"target": place.name, "arrived": place.name, "where": place.where,
+                "distance_m": round(drive.total_m, 2), "duration_s": round(duration, 1)}
 
     def _feedback(self, drive: _Drive) -> Feedback:
         pose = self._body.pose

@@ -44,10 +44,15 @@ class Place:
     position: Point
     description: str
     blocked: str | None = None
+    preposition: str = "in"  # "in the kitchen", "at the front door": how the robot says it is there
 
     @property
     def reachable(self) -> bool:
         return self.blocked is None
+
+    @property
+    def where(self) -> str:
+        return f"{self.preposition} the {self.name}"
 
     @property
     def door(self) -> Point:
@@ -61,10 +66,10 @@ PLACES: tuple[Place, ...] = (
     Place("bedroom", Point(2.5, 1.5), "the bedroom, south-west"),
     Place("bathroom", Point(6.5, 1.5), "the bathroom, south"),
     Place("hallway", Point(6.0, HALLWAY_Y), "the middle of the hallway"),
-    Place("front door", Point(11.5, HALLWAY_Y), "the flat's front door, east end of the hallway"),
-    Place("charging dock", Point(4.0, 3.2), "the robot's charging dock, off the hallway"),
+    Place("front door", Point(11.5, HALLWAY_Y), "the flat's front door, east end of the hallway", preposition="at"),
+    Place("charging dock", Point(4.0, 3.2), "the robot's charging dock, off the hallway", preposition="at"),
     Place("balcony", Point(9.0, 8.7), "the balcony beyond the living room",
-          blocked="the balcony door is closed"),
+          blocked="the balcony door is closed", preposition="on"),
 )
 
 DOCK = "charging dock"
