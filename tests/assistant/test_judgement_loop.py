@@ -6,13 +6,18 @@ from __future__ import annotations
 import pytest
 
 from robovoice.assistant.gate import NOT_REQUESTED
-from robovoice.assistant.loop import Assistant
+from robovoice.assistant.loop import Assistant, TurnResult
 from robovoice.llm.fake_server import ScriptedCall, ScriptedReply, TextReply, ToolCallReply
 from tests.assistant.scripted import scripted_sim, scripted_turn
 
 
 def call(name: str, **arguments: object) -> ToolCallReply:
     return ToolCallReply((ScriptedCall(name, arguments),))
+
+
+def made(result: TurnResult) -> list[tuple[str, str | None]]:
+    """Each call of the turn with its error (None: it ran; `NOT_REQUESTED`: refused)."""
+    return [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)]
 
 
 async def test_a_negated_request_never_reaches_the_robot() -> None:
@@ -190,7 +195,7 @@ async def test_a_tool_beside_a_request_for_another_is_refused_and_the_model_trie
         result = await Assistant(backend, robot.tools).turn("You look worn out, go and get yourself plugged in.")
         assert robot.sim is not None and not robot.sim.state.projector_on
         assert robot.sim.state.nearest_place == "charging dock"
-    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+    assert made(result) == [
         ("set_projector_power", NOT_REQUESTED), ("return_to_dock", None)]
     tool_message = server.requests[1].messages[-2]  # then the request once more (`turn_rules.refit`)
     assert tool_message["role"] == "tool" and "or return_to_dock." in tool_message["content"]
@@ -236,7 +241,7 @@ async def test_after_a_declined_call_is_refused_the_request_beside_it_is_done() 
         result = await Assistant(backend, robot.tools).turn(
             "Please don't switch the projector on. I only want to talk to Dr. Weber.")
         assert robot.sim is not None and robot.sim.state.call_contact == "Dr. Weber"
-    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+    assert made(result) == [
         ("set_projector_power", NOT_REQUESTED), ("start_video_call", None)]
     assert server.requests[1].last_user_text == "Now do the next thing I asked: I only want to talk to Dr. Weber."
 
@@ -251,7 +256,7 @@ async def test_a_refused_call_made_again_is_not_run_and_the_next_thing_asked_is_
             "Join the project to look and then get yourself back on your charger.")
         assert robot.sim is not None
         assert robot.sim.state.nearest_place == "charging dock"
-    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+    assert made(result) == [
         ("navigate_to", NOT_REQUESTED), ("return_to_dock", None)]  # the repeat was not run
     assert len(server.requests) == 3
     hint = server.requests[2].messages[-1]
@@ -268,7 +273,7 @@ async def test_the_action_just_done_made_again_is_not_run_and_not_said_twice() -
             "Go on then, take yourself off to the bedroom, there's a good lad.")
         assert robot.sim is not None
         assert robot.sim.state.nearest_place == "bedroom"
-    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+    assert made(result) == [
         ("navigate_to", None)]  # the repeat was not run
     assert len(server.requests) == 2  # and the turn ended: the arrival was said already
     assert result.reply.count("bedroom") == 1
@@ -277,8 +282,7 @@ async def test_the_action_just_done_made_again_is_not_run_and_not_said_twice() -
 async def test_an_action_made_again_after_it_failed_is_run() -> None:
     # a failed call is no "done": the model may try it again (the robot decides)
     script: list[ScriptedReply] = [call("end_video_call"), call("end_video_call"), TextReply("There is no call.")]
-    async with scripted_sim(script) as (robot, _server, backend):
-        result = await Assistant(backend, robot.tools).turn("Hang up the call, please.")
+    result, _server = await scripted_turn(script, "Hang up the call, please.")
     assert [c.name for c in result.calls] == ["end_video_call", "end_video_call"]
     assert result.outcomes[0].is_error
 
@@ -337,7 +341,7 @@ async def test_a_request_whose_call_did_not_fit_is_asked_for_once_more_with_what
     result, server = await scripted_turn(
         [call("start_video_call", contact="Ben"), call("return_to_dock"), TextReply("Off I go.")],
         "Away with you and plug yourself in.")
-    assert [(c.name, o.error) for c, o in zip(result.calls, result.outcomes, strict=True)] == [
+    assert made(result) == [
         ("start_video_call", NOT_REQUESTED), ("return_to_dock", None)]
     assert server.requests[1].last_user_text == hint
     assert server.requests[1].tool_names == ["return_to_dock"]
