@@ -83,14 +83,15 @@ fi
 
 # --- 4. robovoice with every extra (pip skips what is installed) -------------------------
 say "installing robovoice and its dependencies into .venv"
-$PY -m pip install -q --find-links "$wheel_dir" -e '.[all,dev]'
-# a wheel built for another key (another CPU, or AMX found broken here) is replaced by this key's
+# this key's wheel first, replacing one built for another key (another CPU, or AMX found broken
+# here): the install below keeps whatever llama-cpp-python is there
 llama_wheel=$(ls "$wheel_dir"/llama_cpp_python-"$LLAMA_VERSION"-*.whl | head -n1)
 wheel_sum=$(md5sum "$llama_wheel" | cut -c1-32)
 if [ "$(cat .venv/.llama-wheel-md5 2>/dev/null)" != "$wheel_sum" ]; then
     $PY -m pip install -q --no-deps --force-reinstall "$llama_wheel"
     echo "$wheel_sum" > .venv/.llama-wheel-md5
 fi
+$PY -m pip install -q --find-links "$wheel_dir" -e '.[all,dev]'
 
 # --- 4b. ROS 2: rclpy and Fast DDS come with [all] (the ros2 extra); the NavigateToPose interface
 #          package for the example robot and its tests is built once into .venv (docs/ros2.md)

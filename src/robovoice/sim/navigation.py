@@ -169,8 +169,7 @@ class NavigationNode:
         start = self._body.pose.point
         if start.distance_to(place.position) <= ARRIVAL_TOLERANCE_M:
             return {"target": place.name, "arrived": place.name, "where": place.where, "distance_m": 0.0,
-                    "duration_s": 0.0,
-                    "already_there": True, "message": f"already at the {place.name}"}
+                    "duration_s": 0.0, "already_there": True, "message": f"already at the {place.name}"}
 
         motion = self._body.begin_motion(f"drive to the {place.name}")
         points = route(start, place.position)
