@@ -272,6 +272,10 @@ class VoiceConfig(_Frozen):
     # ("Sorry, I didn't catch that."); -0.6 was chosen on the dev audio (docs/judgement.md)
     confidence_check: bool = True
     confidence_min_logprob: float = -0.6
+    # a command whose speech is less than this many dB above the noise around it is turned
+    # away ("Sorry, it is too noisy ..."): Whisper hears commands drowned in noise word for
+    # word and sure of them; 6 was chosen on the dev audio (docs/judgement.md "Too noisy to act on")
+    confidence_min_snr_db: float = Field(default=6.0, ge=-20.0, le=40.0)
     # a tool with a confirm question ("Shall I call Anna?") is asked about, not run, on a
     # command transcript below this (a transcript in doubt); -0.4 was chosen on the dev audio
     confirm_doubtful: bool = True

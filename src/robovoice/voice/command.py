@@ -24,7 +24,7 @@ from robovoice.audio.format import AudioChunk
 from robovoice.audio.stt import Transcript
 from robovoice.llm.base import AudioPart, ContentPart
 from robovoice.voice.answers import AnswerRecorder
-from robovoice.voice.confidence import DIDNT_CATCH, doubtful, unsure_reason
+from robovoice.voice.confidence import doubtful, too_noisy, turned_away_with, unsure_reason
 from robovoice.voice.config import PipelineConfig
 from robovoice.voice.events import Emit, TranscriptReady, VoiceTurnFinished, VoiceTurnStarted
 from robovoice.voice.floor import Floor, PipelineStats, report_ignored
@@ -143,7 +143,7 @@ class CommandTurn:
             tight = trim_to_wake(utt.audio, verdict.wake_at, WAKE_PHRASE_S)
             heard = await c.stt.transcript_for(tight, self.metrics, None, c.hint)
             text, unsure = self._judged(heard, verdict)
-        return heard, text, unsure
+        return heard, text, unsure or too_noisy(utt.audio, c.config.confidence)
 
     def _judged(self, heard: Transcript, verdict: Verdict) -> tuple[str, str | None]:
         c = self._c
@@ -192,7 +192,7 @@ class CommandTurn:
                     return
                 if unsure is not None:
                     c.turns.rearm(utt.end)  # the person may say it again without the wake word
-                    self._say(DIDNT_CATCH, "reply")
+                    self._say(turned_away_with(unsure), "reply")
                     await report_ignored(c.emit, c.stats, unsure, utt, raw)
                     return
                 content = (AudioPart(wav_bytes(audio)),) if c.audio_native else text

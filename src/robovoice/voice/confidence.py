@@ -19,6 +19,12 @@ scores (Moonshine) is never turned away.
 Between that threshold and ``[voice] confirm_below_logprob`` (-0.4) a transcript is in doubt
 (`doubtful`): acted on, but a tool that declares a confirm question ("Shall I call Anna?") is
 asked about first (assistant/confirm.py).
+
+Whisper is also sure of words it could hardly hear: on the dev clips drowned in noise (-5 to
+-1 dB) it wrote three commands word for word at -0.2 to -0.33. A transcript is not turned away
+for that alone, but a command whose speech is under ``[voice] confidence_min_snr_db`` (6 dB)
+above the noise around it is (`too_noisy`, measured by `audio.level`): "Sorry, it is too noisy
+for me to be sure what you said." A spoken stop is acted on before either check.
 """
 
 from __future__ import annotations
@@ -26,12 +32,16 @@ from __future__ import annotations
 import logging
 import re
 
+from robovoice.audio.format import AudioChunk
+from robovoice.audio.level import speech_to_noise_db
 from robovoice.audio.stt import Confidence, Transcript, WordScore
 from robovoice.voice.config import ConfidenceCheck
 
 log = logging.getLogger(__name__)
 
 DIDNT_CATCH = "Sorry, I didn't catch that."
+TOO_NOISY = "Sorry, it is too noisy for me to be sure what you said."
+_NOISY = "noisy"  # how a `too_noisy` reason begins
 
 _WORD = re.compile(r"[A-Za-z0-9]+(?:'[A-Za-z]+)?")
 
@@ -70,3 +80,20 @@ def doubtful(transcript: Transcript, check: ConfidenceCheck) -> bool:
     scores (Moonshine) is never in doubt."""
     scores = transcript.confidence
     return check.confirm_below is not None and scores is not None and scores.avg_logprob < check.confirm_below
+
+
+def too_noisy(audio: AudioChunk, check: ConfidenceCheck) -> str | None:
+    """Why the utterance `audio` (a VAD cut, its pre- and post-roll included) is too noisy to act
+    on, or None to act: its speech is less than `check.min_snr_db` above the noise around it."""
+    if check.min_snr_db is None:
+        return None
+    snr = speech_to_noise_db(audio)
+    log.info("speech to noise: %s dB", "-" if snr is None else f"{snr:.1f}")
+    if snr is not None and snr < check.min_snr_db:
+        return f"{_NOISY}: speech {snr:.1f} dB over the noise < {check.min_snr_db:.1f}"
+    return None
+
+
+def turned_away_with(reason: str) -> str:
+    """What the robot says when a command is turned away for `reason`."""
+    return TOO_NOISY if reason.startswith(_NOISY) else DIDNT_CATCH

@@ -1,14 +1,16 @@
 """How sure Whisper is of each clip of audio case files, and what the confidence check
-(voice/confidence.py) would turn away at several thresholds: the figures the threshold
-was chosen from (on dev sets only; docs/judgement.md, "Transcript confidence").
+(voice/confidence.py) would turn away at several thresholds: the figures the thresholds
+were chosen from (on dev sets only; docs/judgement.md, "Transcript confidence" and "Too
+noisy to act on").
 
     python -m robovoice.voice.confidence_eval tests/data/eval/audio.jsonl tests/data/eval/audio-dev-unsure.jsonl
 
 Each clip with the wake word is transcribed whole, as the pipeline transcribes a command
 (Whisper tiny.en, the sim robot's tool hint, word scores on). Clips are counted as
 commands (the case expects a tool call), unintelligible (class ``unintelligible``) or other
-speech (negations, mentions, questions: no call expected, but clearly said). Prints one JSON
-line per clip, then the sweep.
+speech (negations, mentions, questions: no call expected, but clearly said). The speech-to-noise
+estimate is taken on the clip's first utterance as the endpointer cuts it (Silero VAD, the
+default settings), as the pipeline takes it. Prints one JSON line per clip, then the sweep.
 """
 
 from __future__ import annotations
@@ -18,6 +20,8 @@ import json
 from collections.abc import Sequence
 from typing import Any
 
+from robovoice.audio.format import MODEL_FORMAT, AudioChunk, convert
+from robovoice.audio.level import speech_to_noise_db
 from robovoice.audio.stt import WhisperTranscriber
 from robovoice.audio.wav import read_wav
 from robovoice.eval.cases import load_cases
@@ -27,6 +31,7 @@ from robovoice.voice.utterance import strip_wake_words
 from robovoice.voice.vocabulary import command_hint
 
 LOGPROB_THRESHOLDS = (-0.8, -0.7, -0.6, -0.55, -0.5, -0.4)
+SNR_THRESHOLDS = (4.0, 5.0, 6.0, 7.0, 8.0)
 WORD_THRESHOLDS = (0.3, 0.5, 0.6)
 
 
@@ -40,6 +45,21 @@ def sim_hint() -> str:
     return command_hint("hey jarvis", specs)
 
 
+def first_utterance_snr(audio: AudioChunk) -> float | None:
+    """`speech_to_noise_db` of the first utterance the endpointer cuts from `audio`."""
+    from robovoice.audio.vad import Endpointer, EndpointerConfig, SpeechEnded
+    from robovoice.voice.speculate_eval import VAD_FRAME, probabilities
+
+    endpointer = Endpointer(EndpointerConfig())
+    for k, probability in enumerate(probabilities(audio)):
+        frame = audio.samples[k * VAD_FRAME : (k + 1) * VAD_FRAME]
+        for event in endpointer.update(float(probability), frame, k * VAD_FRAME / audio.format.rate):
+            if isinstance(event, SpeechEnded):
+                return speech_to_noise_db(event.audio)
+    ended = [e for e in endpointer.flush() if isinstance(e, SpeechEnded)]
+    return speech_to_noise_db(ended[0].audio) if ended else None
+
+
 def score_clips(paths: Sequence[str]) -> list[dict[str, Any]]:
     from pathlib import Path
 
@@ -48,14 +68,17 @@ def score_clips(paths: Sequence[str]) -> list[dict[str, Any]]:
         for case in load_cases(Path(path)):
             if case.audio is None or not case.wake:
                 continue
-            heard = stt.transcribe(read_wav(case.audio), hint)
+            audio = convert(read_wav(case.audio), MODEL_FORMAT)
+            heard = stt.transcribe(audio, hint)
+            snr = first_utterance_snr(audio)
             assert heard.confidence is not None
             command = strip_wake_words(heard.text)
             kind = "command" if case.expect else "unintelligible" if case.case_class == "unintelligible" else "other"
             row = {"id": case.id, "kind": kind, "text": heard.text,
                    "avg_logprob": round(heard.confidence.avg_logprob, 3),
                    "mean_word_probability": mean_word_probability(heard.confidence, command),
-                   "no_speech": round(heard.confidence.no_speech_prob, 3)}
+                   "no_speech": round(heard.confidence.no_speech_prob, 3),
+                   "snr_db": None if snr is None else round(snr, 1)}
             print(json.dumps(row), flush=True)
             rows.append(row)
     return rows
@@ -74,6 +97,8 @@ def sweep(rows: Sequence[dict[str, Any]]) -> list[str]:
     out = [line(f"avg_logprob < {t}", lambda r, t=t: r["avg_logprob"] < t) for t in LOGPROB_THRESHOLDS]
     out += [line(f"mean word probability < {t}", lambda r, t=t: (r["mean_word_probability"] or 1.0) < t)
             for t in WORD_THRESHOLDS]
+    out += [line(f"speech to noise < {t} dB", lambda r, t=t: r.get("snr_db") is not None and r["snr_db"] < t)
+            for t in SNR_THRESHOLDS]
     return out
 
 

@@ -110,15 +110,19 @@ class SpeculationConfig:
 class ConfidenceCheck:
     """`min_avg_logprob`: a command transcript whose mean token log-probability is below it
     is turned away (`voice.confidence`); `confirm_below`: below it, a tool with a confirm
-    question is asked about before it runs (`assistant.confirm`). None turns either off."""
+    question is asked about before it runs (`assistant.confirm`); `min_snr_db`: a command
+    whose speech is less than this much louder than the noise around it is turned away
+    (`voice.confidence.too_noisy`). None turns each off."""
 
     min_avg_logprob: float | None
     confirm_below: float | None = None
+    min_snr_db: float | None = None
 
     @classmethod
     def from_config(cls, voice: VoiceConfig) -> ConfidenceCheck:
         return cls(voice.confidence_min_logprob if voice.confidence_check else None,
-                   voice.confirm_below_logprob if voice.confirm_doubtful else None)
+                   voice.confirm_below_logprob if voice.confirm_doubtful else None,
+                   voice.confidence_min_snr_db if voice.confidence_check else None)
 
 
 @dataclass(frozen=True, slots=True)

@@ -20,10 +20,11 @@ def fixed_phrases() -> tuple[str, ...]:
     stop replies; those are then synthesised at first use)."""
     from robovoice.config import VoiceConfig
     from robovoice.llm.failover import FALLBACK_MESSAGE
-    from robovoice.voice.confidence import DIDNT_CATCH
+    from robovoice.voice.confidence import DIDNT_CATCH, TOO_NOISY
 
     voice = VoiceConfig()
-    return (voice.stop_reply, voice.stop_failed_reply, voice.one_moment, DIDNT_CATCH, FALLBACK_MESSAGE)
+    return (voice.stop_reply, voice.stop_failed_reply, voice.one_moment, DIDNT_CATCH, TOO_NOISY,
+            FALLBACK_MESSAGE)
 
 
 @dataclass(frozen=True, slots=True)
