@@ -465,6 +465,15 @@ def test_asking_whether_it_is_beyond_the_robot_makes_a_can_you_an_ability_questi
     assert read_request("Gonnae no ring the plumber.").clauses[0].kind is ClauseKind.NEGATED
 
 
+def test_in_principle_or_theoretically_beside_a_can_you_asks_whether_it_can() -> None:
+    """Dev principle-1…3 (audio v19's ability-1, "could you in principle make a video call to
+    my neighbour?", started the call); the same words in a plain request ask for it."""
+    assert not read_request("Can you theoretically ring the plumber?").asks_action
+    assert not read_request("In principle, could you drive over to the garage?").asks_action
+    assert not read_request("Could you technically dim the lamp by yourself?").asks_action
+    assert read_request("Drive to the garage, in principle it's open.").asks_action
+
+
 def test_a_place_after_not_that_one_replaces_it_and_just_that_is_said_again() -> None:
     """Dev meant-1, meant-2, theory-1 (text test v18: "…, then the kitchen, sorry, not the
     kitchen, I meant the living room" dropped the living room; "what am I saying" became a

@@ -109,6 +109,7 @@ _EMERGENCY = re.compile(r"\b(?:in (?:an|case of(?: an)?) emergency|if anything (
 # you …?", "Could you ring the doctor? I just want to know you can."
 JUST_ASKING = re.compile(
     r"\b(?:(?:just|only) (?:asking|wondering|curious)|out of (?:interest|curiosity)|hypothetically|in theory|"
+    r"in principle|theoretically|technically|"
     r"just so (?:i|we)(?:'m| am| are|'re)? (?:know|clear|sure)|for (?:future|my own|my) (?:reference|information)|"
     r"want(?:ed)? to know (?:(?:if|whether|that) )?you (?:can|could)|"
     # "Can you make video calls to my son, or is that beyond you?": whether it can, said outright
