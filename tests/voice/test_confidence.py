@@ -10,11 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from robovoice.audio.fakes import EnergyVAD
+from robovoice.audio.fakes import EnergyVAD, ToneSynthesizer
 from robovoice.audio.format import MODEL_FORMAT, AudioChunk
 from robovoice.audio.stt import Confidence, Transcript, WordScore
 from robovoice.config import load_config
-from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, ToolCallReply
+from robovoice.llm.fake_server import FakeOpenAIServer, ScriptedCall, TextReply, ToolCallReply
 from robovoice.llm.openai_compat import OpenAICompatBackend
 from robovoice.voice.confidence import (
     DIDNT_CATCH,
@@ -184,6 +184,28 @@ async def test_a_config_file_lowering_or_turning_off_the_check_acts_on_the_same_
     assert DIDNT_CATCH not in [e.text for e in s.log.of(SentenceSpoken)]
     assert done.result is not None and [c.name for c in done.result.calls] == ["set_projector_power"]
     assert s.sim.state.projector_on
+
+
+async def test_the_robots_own_reply_heard_back_while_it_listens_again_is_not_a_request(
+    server: FakeOpenAIServer, backend: OpenAICompatBackend,
+) -> None:
+    """Audio v18 and v19: after "Sorry, I didn't catch that." the robot listens for the words
+    again without the wake word (`TurnTaking.rearm`, which stood in for a wake word), and its
+    own reply coming back through the microphone ("Sorry, I didn't ask that.") passed the echo
+    gate as if a wake word had been said over it, and went to the model as the person's words."""
+    stt = ScoredTranscriber()
+    models = dataclasses.replace(fake_models(stt), tts=ToneSynthesizer(seconds_per_char=0.1))  # 2.7 s
+    server.push(TextReply("Sorry, I'm not sure what you would like me to do."))
+    async with voice_session(models, backend, speed=2.0) as s:
+        stt.text, stt.avg_logprob = "Hey Jarvis, turn on the projector.", UNSURE
+        await s.say(wake_command())
+        await s.log.wait_for(SentenceSpoken)  # "Sorry, I didn't catch that." starts to play
+        stt.text, stt.avg_logprob = "Sorry, I didn't ask that.", SURE
+        await s.say(babble(1.0))  # heard over the reply, as its echo
+        await s.settle()
+    assert [e.reason for e in s.log.of(UtteranceIgnored)][:2] == ["unsure: mean log-probability -1.50 < -0.60",
+                                                                   "own_voice"]
+    assert server.requests == [] and not s.log.of(VoiceTurnFinished)
 
 
 async def test_an_unsure_spoken_stop_still_stops_at_once(

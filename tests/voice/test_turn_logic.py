@@ -42,7 +42,11 @@ def test_wake_word_then_pause_then_command_within_the_timeout() -> None:
     t = TurnTaking(_turns(command_timeout_s=6.0))
     t.wake(1.0)
     t.rearm(1.3)  # the first utterance was the wake phrase alone
-    assert t.classify(3.0, 4.5, moving=False).action is Action.COMMAND
+    rearmed = t.classify(3.0, 4.5, moving=False)
+    assert rearmed.action is Action.COMMAND and rearmed.rearmed  # no wake word was said for it
+    t.wake(8.0)
+    heard = t.classify(8.2, 9.0, moving=False)
+    assert heard.wake_at == 8.0 and not heard.rearmed
     t.wake(10.0)
     assert t.expire(17.0)
     assert t.phase(17.0) is Phase.LISTENING

@@ -143,7 +143,8 @@ class Router:
         own_voice = utt.playback_share > 0.5 and not utt.near_end
         hint = STOP_HINT if verdict.action is Action.STOP_CHECK else self.commands.hint
         speculation = self.stt.take(utt.start, utt.end, hint) if self.stt is not None else None
-        if verdict.action is Action.COMMAND and (verdict.wake_at is not None or not own_voice):
+        heard_wake = verdict.wake_at is not None and not verdict.rearmed  # a wake word said now
+        if verdict.action is Action.COMMAND and (heard_wake or not own_voice):
             self.commands.start(utt, verdict, received, compute_s, speculation)
         elif verdict.action is Action.STOP_CHECK:
             # no acoustic gate here: a missed stop is worse than a needless one, and the robot's

@@ -44,6 +44,9 @@ class Verdict:
     wake_at: float | None = None  # the wake word that addressed this command
     follow_up: bool = False
     wake_sure: bool = True  # false: an unsure wake word; the transcript must name the robot
+    # the "wake word" is `TurnTaking.rearm`'s, set after a command turned away: nothing was heard
+    # now, so the robot's own reply coming back counts as its own voice (voice/router.py)
+    rearmed: bool = False
 
 
 class TurnTaking:
@@ -53,6 +56,7 @@ class TurnTaking:
         self.config = config
         self._wake_at: float | None = None  # the last wake word not yet used by a command
         self._wake_sure = True
+        self._rearmed = False  # the waiting wake word is `rearm`'s
         self._turn_running = False
         self._playing_until: float | None = None  # stream time the current playback ends (or None)
         self._playing = False
@@ -66,7 +70,7 @@ class TurnTaking:
         sure one still waiting for its command."""
         if not sure and self._wake_at is not None and self._wake_sure:
             return
-        self._wake_at, self._wake_sure = at, sure
+        self._wake_at, self._wake_sure, self._rearmed = at, sure, False
         self._follow_up_until = None
 
     def turn_started(self) -> None:
@@ -166,7 +170,7 @@ class TurnTaking:
         cfg = self.config
         if self._wake_for(start, end):
             wake, self._wake_at = self._wake_at, None
-            return Verdict(Action.COMMAND, "wake word", wake_at=wake, wake_sure=self._wake_sure)
+            return Verdict(Action.COMMAND, "wake word", wake_at=wake, wake_sure=self._wake_sure, rearmed=self._rearmed)
         if self._follow_up_for(start):
             self._follow_up_until = None
             return Verdict(Action.COMMAND, "follow-up", follow_up=True)
@@ -176,4 +180,5 @@ class TurnTaking:
 
     def rearm(self, at: float) -> None:
         """A command turned out to be the wake phrase alone: keep waiting for the command."""
-        self._wake_at, self._wake_sure = at, True  # an unsure wake is named in its transcript by now
+        # an unsure wake is named in its transcript by now
+        self._wake_at, self._wake_sure, self._rearmed = at, True, True
