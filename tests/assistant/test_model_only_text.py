@@ -277,6 +277,13 @@ async def test_a_guess_is_looked_up_once_only() -> None:
     ("I am in the kitchen.", "I am in the kitchen."),  # already its own voice
     ("The robot vacuum is in the hallway.", "The robot vacuum is in the hallway."),  # another robot
     ("Please tell the robot which place you mean.", "Please tell me which place you mean."),  # the person's doing
+    # the second person, as the person would say it to the robot (texts v27 and v28)
+    ("Your battery is currently at 83.8% and is charging.", "My battery is currently at 83.8% and is charging."),
+    ("You are currently at the charging dock, facing north.", "I am currently at the charging dock, facing north."),
+    ("Right now you're near the kitchen and your camera sees a table.",
+     "Right now I am near the kitchen and my camera sees a table."),
+    ("You are in the kitchen, so I will come to you.", "You are in the kitchen, so I will come to you."),  # the person
+    ("You are welcome.", "You are welcome."),
 ])
 def test_the_robot_speaks_of_itself_in_the_first_person(sentence: str, spoken: str) -> None:
     assert in_first_person(sentence) == spoken

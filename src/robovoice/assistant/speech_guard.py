@@ -206,6 +206,14 @@ _SELF = re.compile(r"\bthe robot(?:'s\b|\s+(is|isn't|has|hasn't|was|wasn't|does|
                    re.IGNORECASE)
 # the robot as the object of the person's doing: "Please tell the robot which place you mean."
 _SELF_OBJECT = re.compile(r"\b(tell|ask|show|give|let|help|follow|call|wake|remind)\s+the robot\b", re.IGNORECASE)
+# … and sometimes in the second person, as the person would say it to the robot: "Your battery is at
+# 83.8%.", "You are currently at the charging dock, facing north." (texts v27 and v28). Only the
+# robot's own things and its place or motion: "you are in the kitchen" may be where the person is.
+_YOUR_OWN = re.compile(r"\b(your) (battery|charge|charging dock|dock|camera|projector|position|location|heading)\b",
+                       re.IGNORECASE)
+_YOU_ARE_THERE = re.compile(r"\b(you are|you're)((?: currently| now| still| already| right now)? "
+                            r"(?:at|near|facing|charging|moving|not moving|driving|on my way|on your way)\b)",
+                            re.IGNORECASE)
 _FIRST_PERSON = {"is": "am", "isn't": "am not", "has": "have", "hasn't": "haven't", "does": "do", "doesn't": "don't",
                  "goes": "go", "tries": "try", "carries": "carry"}
 
@@ -224,6 +232,8 @@ def in_first_person(sentence: str) -> str:
 
     plain = sentence.replace("\u2019", "'")
     out = _SELF_OBJECT.sub(r"\1 me", _SELF.sub(first, plain))
+    out = _YOUR_OWN.sub(lambda m: ("My" if m.group(1)[0] == "Y" else "my") + " " + m.group(2), out)
+    out = _YOU_ARE_THERE.sub(lambda m: "I am" + m.group(2).replace("on your way", "on my way"), out)
     if out == plain:
         return sentence
     out = re.sub(r"\bits\b", "my", out)  # "at its charging dock": the robot's own
