@@ -465,6 +465,16 @@ def test_asking_whether_it_is_beyond_the_robot_makes_a_can_you_an_ability_questi
     assert read_request("Gonnae no ring the plumber.").clauses[0].kind is ClauseKind.NEGATED
 
 
+def test_once_that_is_done_starts_the_next_step() -> None:
+    """Dev done-1, done-2 (text v29's "Ring our Ben for me, and once that's done take yourself
+    off for a charge." lost the charge); the same words alone ask nothing."""
+    assert read_request("Switch the lamp on, and when that's finished head to the garage.").steps == (
+        "Switch the lamp on", "head to the garage")
+    assert read_request("Ring the plumber, then as soon as that is over go back to bed.").steps == (
+        "Ring the plumber", "go back to bed")
+    assert read_request("Once that's done, I will have a cup of tea.").steps == ()
+
+
 def test_in_principle_or_theoretically_beside_a_can_you_asks_whether_it_can() -> None:
     """Dev principle-1…3 (audio v19's ability-1, "could you in principle make a video call to
     my neighbour?", started the call); the same words in a plain request ask for it."""

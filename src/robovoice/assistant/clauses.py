@@ -19,6 +19,9 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
+# "…, and once that's done take yourself off for a charge": the step before, done, then this one
+_DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:that|this|it)(?:'s| is| has)(?: been)? "
+                        r"(?:done|finished|over|sorted)\s+", re.IGNORECASE)
 # "call her and, uh, then …": a conjunction left at the end by the comma after it (not at the
 # very end: "Hey Jarvis, go and" was cut off)
 _TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
@@ -50,5 +53,5 @@ _CALL_COMMA = re.compile(r"(?<!\bthe )(?<!\ba )(?<!\bvideo )\b((?i:call|ring|pho
 def split_clauses(text: str) -> list[str]:
     text = _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip()))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
-    parts = [p for p in (_LEADING.sub("", p.strip(" ,.;:!?-\"'")) for p in _SPLIT.split(text)) if p]
+    parts = [p for p in (_DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))) for p in _SPLIT.split(text)) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]
