@@ -208,6 +208,29 @@ async def test_the_robots_own_reply_heard_back_while_it_listens_again_is_not_a_r
     assert server.requests == [] and not s.log.of(VoiceTurnFinished)
 
 
+@pytest.mark.parametrize("setup", ["", "driving"])
+async def test_an_unsure_stop_with_the_wake_word_stops_only_a_robot_that_moves(
+    setup: str, server: FakeOpenAIServer, backend: OpenAICompatBackend,
+) -> None:
+    """Audio v20: two commands drowned in noise at -3 and -5 dB woke the robot, came out as a
+    stop, and the idle robot ran its stop tool. A stop in doubt while the robot is known to stand
+    still is turned away like any unsure command; while it moves it stops at once."""
+    stt = ScoredTranscriber()
+    async with voice_session(fake_models(stt), backend, speed=2.0, sim_speed=2.0, setup=setup) as s:
+        assert s.sim.state.moving == (setup == "driving")
+        stt.text, stt.avg_logprob = "Hey Jarvis, stop, stop, stop!", UNSURE
+        await s.say(wake_command())
+        await s.log.wait_for(SentenceSpoken)
+        await s.settle()
+    assert server.requests == [] and not s.sim.state.moving
+    stopped, unsure = s.log.of(RobotStopped), [e for e in s.log.of(UtteranceIgnored) if e.reason.startswith("unsure")]
+    if setup == "driving":
+        assert len(stopped) == 1 and stopped[0].ok and unsure == []
+    else:
+        assert stopped == [] and len(unsure) == 1
+        assert [e.text for e in s.log.of(SentenceSpoken)] == [DIDNT_CATCH]
+
+
 async def test_an_unsure_spoken_stop_still_stops_at_once(
     server: FakeOpenAIServer, backend: OpenAICompatBackend,
 ) -> None:

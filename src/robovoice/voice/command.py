@@ -185,7 +185,11 @@ class CommandTurn:
                     # "Hey Charlie, …": the wake word fired on a near miss; not for the robot
                     await report_ignored(c.emit, c.stats, "addressed_elsewhere", utt, raw)
                     return
-                if is_stop_command(text):
+                # a stop acts before any doubt about the words, except when there is nothing to stop
+                # (none made at a pause, the robot still): Whisper writes "Stop! Stop! Stop!" for
+                # commands drowned in noise (audio v20)
+                nothing_to_stop = c.motion.known_still and not c.stopper.stopped_for(utt.start)
+                if is_stop_command(text) and not (unsure is not None and nothing_to_stop):
                     c.assistant.confirmations.clear()  # a "stop" is no yes to "Shall I call Anna?"
                     if not await c.stopper.stop_once(utt.start, text, utt.end, metrics, self.id):
                         await report_ignored(c.emit, c.stats, "stopped_at_pause", utt, raw)  # at a pause

@@ -84,6 +84,17 @@ class MotionWatch:
         last = self._last
         return last is not None and self._clock() - last[0] <= self._max_age_s and last[1]
 
+    @property
+    def known_still(self) -> bool:
+        """Known not to move now: no drive of ours, and the local answer or a recent pose answer
+        says still. Not known (no probe, no answer yet, an old one) is not still."""
+        if self._own:
+            return False
+        if self._local is not None:
+            return not self._local()
+        last = self._last
+        return last is not None and self._clock() - last[0] <= self._max_age_s and not last[1]
+
     def want(self) -> None:
         """Ask for a fresh answer from the pose tool (returns at once)."""
         if self.probe is not None and self.probe.available:

@@ -88,13 +88,17 @@ class StopController:
                     self._end.clear()
                     await self._end.wait()
 
+    def stopped_for(self, onset: float) -> bool:
+        """Whether a stop was made for the utterance starting at `onset` (at one of its pauses)."""
+        return self._stopped_for == onset
+
     async def stop_once(self, onset: float, text: str, at: float, metrics: TurnMetrics,
                         turn: int | None = None, *, at_pause: bool = False) -> bool:
         """Stop for the utterance starting at `onset`, unless a stop was already made for it
         (its pauses and its end may each find the stop); whether it stopped now. `turn`: the
         command turn it is made in (None: a turn of its own, whose answers are saved here);
         `at_pause`: the utterance may still go on (its reply waits for its end)."""
-        if self._stopped_for == onset:
+        if self.stopped_for(onset):
             return False
         self._stopped_for = onset
         if turn is not None:
