@@ -153,5 +153,7 @@ class Router:
         else:
             if speculation is not None:
                 speculation.cancel()
+            if verdict.rearmed and verdict.wake_at is not None:
+                self.turns.rearm(verdict.wake_at)  # its own voice does not use up the wait for the words
             await report_ignored(self.emit, self.stats, "own_voice" if own_voice else verdict.reason or "no_wake_word",
                                  utt)
