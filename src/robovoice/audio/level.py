@@ -6,9 +6,9 @@ speech (`EndpointerConfig.pre_roll_s` before its onset, `post_roll_s` of the sil
 and that audio is the room's noise just before and after the words. `speech_to_noise_db`
 compares the louder half of the frames in between (the words) with the quieter of the two
 edges: one edge can hold speech (an onset found late, a stream that began mid-word), and the
-quieter one is then the noise. It is an estimate, not
-the mixing SNR of a test clip: on the dev clips it reads about 2-4 dB above it for stationary
-noise and close to it for babble (docs/judgement.md has the table).
+quieter one is then the noise. It is an estimate, not the mixing SNR of a test clip: on the
+dev clips it reads about 2-4 dB above it for stationary noise and close to it for babble
+(docs/judgement.md has the table).
 """
 
 from __future__ import annotations

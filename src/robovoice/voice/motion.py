@@ -73,27 +73,26 @@ class MotionWatch:
     def own_motion(self) -> bool:
         return bool(self._own)
 
-    @property
-    def moving(self) -> bool:
-        """Now, without waiting: a drive of ours, the local answer, or the pose tool's last
-        answer if recent enough."""
+    def _answer(self) -> bool | None:
+        """Whether the robot moves now, without waiting: a drive of ours, the local answer, or the
+        pose tool's last answer if recent enough; None when not known."""
         if self._own:
             return True
         if self._local is not None:
             return bool(self._local())
         last = self._last
-        return last is not None and self._clock() - last[0] <= self._max_age_s and last[1]
+        return last[1] if last is not None and self._clock() - last[0] <= self._max_age_s else None
+
+    @property
+    def moving(self) -> bool:
+        """Known to move now (`_answer`)."""
+        return self._answer() is True
 
     @property
     def known_still(self) -> bool:
-        """Known not to move now: no drive of ours, and the local answer or a recent pose answer
-        says still. Not known (no probe, no answer yet, an old one) is not still."""
-        if self._own:
-            return False
-        if self._local is not None:
-            return not self._local()
-        last = self._last
-        return last is not None and self._clock() - last[0] <= self._max_age_s and not last[1]
+        """Known not to move now (`_answer`): not known (no probe, no answer yet, an old one) is
+        not still."""
+        return self._answer() is False
 
     def want(self) -> None:
         """Ask for a fresh answer from the pose tool (returns at once)."""

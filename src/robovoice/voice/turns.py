@@ -179,6 +179,7 @@ class TurnTaking:
         return Verdict(Action.IGNORE, "no_wake_word")
 
     def rearm(self, at: float) -> None:
-        """A command turned out to be the wake phrase alone: keep waiting for the command."""
+        """A command turned out to be the wake phrase alone, or was turned away as unsure: keep
+        waiting for the command, which needs no wake word now."""
         # an unsure wake is named in its transcript by now
         self._wake_at, self._wake_sure, self._rearmed = at, True, True
