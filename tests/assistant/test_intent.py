@@ -475,6 +475,17 @@ def test_once_that_is_done_starts_the_next_step() -> None:
     assert read_request("Once that's done, I will have a cup of tea.").steps == ()
 
 
+def test_a_goodbye_for_the_person_on_the_call_is_no_step() -> None:
+    """Dev farewell-1…3 (text v29's "Tell Anna cheerio and end the call, then come through to
+    the kitchen …" spent its steps on the goodbye and never drove); "give … a ring" still asks."""
+    assert read_request("Say cheerio to our Sam, hang up, and pop the lamp on.").steps == (
+        "hang up", "pop the lamp on")
+    assert read_request("Wish Sam goodnight from me, then end the call.").steps == ("end the call",)
+    assert not read_request("Say hello to the plumber for me.").asks_action
+    assert read_request("Give Sam a ring.").steps == ("Give Sam a ring",)
+    assert read_request("Tell Sam to come round.").asks_action
+
+
 def test_in_principle_or_theoretically_beside_a_can_you_asks_whether_it_can() -> None:
     """Dev principle-1…3 (audio v19's ability-1, "could you in principle make a video call to
     my neighbour?", started the call); the same words in a plain request ask for it."""

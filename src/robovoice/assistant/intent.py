@@ -44,6 +44,7 @@ from robovoice.assistant.hypothetical import (
 )
 from robovoice.assistant.lexicon import (
     ASKING_VERBS,
+    FAREWELL,
     FILLER,
     IMPERATIVE_SHAPE,
     IMPERATIVES,
@@ -279,6 +280,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         when_only = bool(LATER_ONLY.match(bare)) or (when_only and not bare)
         if kind is ClauseKind.REQUEST and _reason(bare, clauses):
             kind = ClauseKind.STATEMENT  # "ring Clara, I want to show her my cake": why, not what
+        if kind is ClauseKind.REQUEST and FAREWELL.match(bare):
+            kind = ClauseKind.STATEMENT  # "tell Anna cheerio": words for the call, not a step (lexicon)
         aside = kind is ClauseKind.STATEMENT and bool(_ASIDE.match(bare))  # "…, no, sorry, I'm muddled, …"
         corrected = corrected and (not bare or aside)
         if (named := _named_back(bare, clauses, undone)) is not None:

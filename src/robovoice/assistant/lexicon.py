@@ -122,6 +122,13 @@ RHETORICAL = re.compile(r"^(?:can|could|would|will) (?:you|ye) (?:ever )?(?:beli
                         r"(?: (?:it|that|this|them|him|her|the (?:cheek|nerve)(?: of (?:it|him|her|them))?))?\W*$",
                         re.IGNORECASE)
 
+# Words for the person on the call, not a step for the robot: "tell Anna cheerio (from me)", "say
+# ta-ra to our Ben", "wish Clara goodnight". The robot passes no messages; the person says them.
+_PARTING = (r"(?:bye|bye-bye|bye bye|goodbye|good-bye|good bye|cheerio|ta-ra|tara|ta ta|so long|farewell|"
+            r"good ?night|night night|see you|hello|hi|thanks|thank you|all the best|best wishes|my love)")
+FAREWELL = re.compile(rf"^(?:(?:tell|wish|bid) (?:our |my )?\w+(?: \w+)? (?:a |my )?{_PARTING}"
+                      rf"|say (?:a )?{_PARTING}(?: to\b| for me\b|$))", re.IGNORECASE)
+
 # A hedge said after a request: "…, then go and wait at the front door for her, I guess" (text
 # test v26). It asks nothing, though it is short enough to look like "…, then the bedroom".
 _HEDGE = re.compile(r"^(?:i (?:guess|suppose|think|reckon|expect|imagine)|you know|y'know|if you like|or something"
