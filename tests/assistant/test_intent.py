@@ -486,6 +486,20 @@ def test_a_goodbye_for_the_person_on_the_call_is_no_step() -> None:
     assert read_request("Tell Sam to come round.").asks_action
 
 
+def test_formal_requests_and_capable_questions() -> None:
+    """Dev grateful-1, grateful-2, place-1, capable-1, capable-2 (text v30: "I should be most
+    grateful if you would place a video call to …" was not read as asked; "… whether you would
+    be capable of telephoning my son Ben" started the call)."""
+    assert read_request("I should be very thankful if you would ring the plumber.").asks_action
+    assert read_request("I'd be ever so glad if you could dim the lamp.").asks_action
+    assert read_request("Go to the garage, then place a call to the plumber.").steps == (
+        "Go to the garage", "place a call to the plumber")
+    assert not read_request("I wonder whether you might be capable of ringing the plumber.").asks_action
+    assert not read_request("Could you ring the plumber? I do not require it at the moment.").asks_action
+    # "ever so" says how much, not whether ever: a statement, not an ability question
+    assert read_request("It's ever so cold in the garage.").clauses[0].kind is ClauseKind.STATEMENT
+
+
 def test_in_principle_or_theoretically_beside_a_can_you_asks_whether_it_can() -> None:
     """Dev principle-1…3 (audio v19's ability-1, "could you in principle make a video call to
     my neighbour?", started the call); the same words in a plain request ask for it."""

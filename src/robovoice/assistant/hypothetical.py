@@ -10,9 +10,9 @@ from robovoice.assistant.lexicon import FILLER, NOT_GENERIC, words
 
 _ABILITY = re.compile(
     r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
-    r"would you be able|(?:do|would|did) you know how|can robots|something you can|the kind of robot|"
+    r"would you be able|you (?:would|could|might) be (?:able|capable)|(?:do|would|did) you know how|can robots|something you can|the kind of robot|"
     r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
-    r"by yourself|on your own|your own way|ever)\b"
+    r"by yourself|on your own|your own way|ever(?! so\b))\b"
     # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
     # have left?" asks about the robot's state
     r"|^(?:do you have|have you got)\b",
@@ -116,7 +116,8 @@ JUST_ASKING = re.compile(
     r"(?:is|would) (?:that|it|this) (?:be )?(?:beyond you|too (?:much|hard|difficult|tricky|complicated) for you)|"
     # "I'm not asking you to do it now, but can you …?": said to be not a request
     r"not (?:asking|telling) you to (?:do (?:it|that|this|anything)|go anywhere)|"
-    r"(?:don'?t|do not) need (?:you to do )?(?:it|that|this)(?: done)? (?:now|today|yet))\b",
+    r"(?:don'?t|do not) (?:need|require) (?:you to do )?(?:it|that|this)(?: done)? (?:now|today|yet|at present|"
+    r"at the moment|just now|right now))\b",
     re.IGNORECASE)
 QUESTION_FORM = re.compile(r"^(?:can|could|would|will) you\b", re.IGNORECASE)
 

@@ -93,7 +93,7 @@ _POLITE = re.compile(
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
     r"^i(?:'m| am| was)? wonder(?:ing|ed)? (?:if|whether) you\b|^do you think you could\b|^if you (?:could|would)\b|"
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
-    r"^i(?:'d| would) (?:be grateful|appreciate it) if you\b",
+    r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b",
     re.IGNORECASE,
 )
 
