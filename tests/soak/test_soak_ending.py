@@ -25,6 +25,8 @@ async def test_a_soak_asked_to_end_reports_what_it_has(backend: OpenAICompatBack
     async with asyncio.timeout(240):
         report = await run_soak(fake_models(), backend, settings, ending=ending)
     assert report.settings["ended_early"] is True
+    # a drive the fake models never start is not waited on for a minute once the end is asked
+    assert report.wall_s < 30.0, report.wall_s
     assert 0 < report.sim_hours < 2.0
     assert len(report.samples) >= 2  # the first sample and the one taken at the end
     assert report.errors["unhandled"] == [], report.errors

@@ -79,6 +79,7 @@ class _Run:
     actuating: frozenset[str]
     command: list[PipelineEvent] | None = None  # events of the command under way
     changed: asyncio.Event = field(default_factory=asyncio.Event)
+    ending: asyncio.Event = field(default_factory=asyncio.Event)  # the run is asked to end (Ctrl-C)
 
     def observe(self, event: PipelineEvent) -> None:
         if self.command is not None:
@@ -127,7 +128,8 @@ async def _give(run: _Run, cmd: Command, sounds: SoakSounds, timeout: float) -> 
     try:
         await room.say(sounds.command(cmd.say), gap_s=0.3).finished(timeout)
         if cmd.follow is not None and cmd.kind == "stop":
-            if await _wait(lambda: sim.state.moving, run, 60.0):
+            # (a drive that never starts is waited for a minute, unless the run is asked to end)
+            if await _wait(lambda: sim.state.moving or run.ending.is_set(), run, 60.0) and not run.ending.is_set():
                 # said once the robot's own "On my way…" has ended: over it, Whisper tiny merges both
                 # ("On my way, stop for the robot!", not a stop); a stop over the robot's voice is a
                 # barge-in, which the soak gives apart
@@ -256,7 +258,7 @@ async def run_soak(models: VoiceModels, backend: LLMBackend, settings: SoakSetti
                                      reference=room.reference, config=config, observer=observe,
                                      moving=lambda: sim.state.moving)
             source.busy = lambda: not pipeline.floor.idle or pipeline.speech.busy or sim.state.moving
-            run = _Run(room, pipeline, sim, tally, actuating)
+            run = _Run(room, pipeline, sim, tally, actuating, ending=ending)
             tally.tasks_before, threads_before = len(asyncio.all_tasks()), {t.name for t in threading.enumerate()}
             try:
                 async with asyncio.TaskGroup() as group:
