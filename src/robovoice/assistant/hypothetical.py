@@ -10,7 +10,8 @@ from robovoice.assistant.lexicon import FILLER, NOT_GENERIC, words
 
 _ABILITY = re.compile(
     r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
-    r"would you be able|you (?:would|could|might) be (?:able|capable)|(?:do|would|did) you know how|can robots|something you can|the kind of robot|"
+    r"would you be able|you (?:would|could|might) be (?:able|capable)|(?:do|would|did) you know how|can robots|"
+    r"something you can|the kind of robot|"
     r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
     r"by yourself|on your own|your own way|ever(?! so\b))\b"
     # owning a part is asked at the start ("do you have a camera?"); "how much battery do you

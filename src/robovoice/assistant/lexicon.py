@@ -38,7 +38,8 @@ IMPERATIVES = frozenset({
     "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
     "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
     "join", "photograph", "snap", "capture", "shut", "try", "nip", "plug", "trot", "toddle", "scoot", "wander", "zip",
-    "kill", "gie", "enter", "place", "telephone", "proceed",  # "kill the projector"; Scots "gie Clara a call" (give); "enter the kitchen"
+    "kill", "gie", "enter",  # "kill the projector"; Scots "gie Clara a call" (give); "enter the kitchen"
+    "place", "telephone", "proceed",  # formal: "place a call to …", "proceed to the living room"
 })
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
