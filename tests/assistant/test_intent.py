@@ -500,6 +500,19 @@ def test_formal_requests_and_capable_questions() -> None:
     assert read_request("It's ever so cold in the garage.").clauses[0].kind is ClauseKind.STATEMENT
 
 
+def test_a_stretched_please_and_once_you_have_got_her_keep_the_request_and_its_order() -> None:
+    """Dev stretch-1, stretch-2, gotthem-1, gotthem-2 (text v31: "Pleeease call him" read as no
+    request; "Video-chat Clara, and once you've got her, put the projector on …" put the
+    projector first)."""
+    assert read_request("Pleeease turn the lamp on!").asks_action
+    assert read_request("Ring the plumber, and once you've got him, go to the garage.").steps == (
+        "Ring the plumber", "go to the garage")
+    assert read_request("Go to the garage, and once you have, turn the lamp off.").steps == (
+        "Go to the garage", "turn the lamp off")
+    assert read_request("Call Sam, but only after you've checked the lamp.").steps == ("check the lamp", "Call Sam")
+    assert "1000" in read_request("Drive 1000 metres to the garage.").clauses[0].text  # digits are not stretched
+
+
 def test_in_principle_or_theoretically_beside_a_can_you_asks_whether_it_can() -> None:
     """Dev principle-1…3 (audio v19's ability-1, "could you in principle make a video call to
     my neighbour?", started the call); the same words in a plain request ask for it."""

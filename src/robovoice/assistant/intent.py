@@ -63,6 +63,7 @@ from robovoice.assistant.lexicon import (
     YOU_DO,
     base_form,
     fragment,
+    unfinished,
     words,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
@@ -111,23 +112,6 @@ _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|p
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
-# An utterance whose last request ends on a word that needs one after it was cut off
-# (speech-to-text keeps what was said: "please switch the…", "can you drive over to?"); the
-# model would fill in the rest. A preposition may end a finished request whose object came
-# before it ("list the places you can drive to"); an article or a conjunction may not.
-_ENDS_ON_ARTICLE = re.compile(r"\b(?:the|a|an|my|your|and|or)\s*(?:\.\.\.|\u2026)?[\s.?!]*$", re.IGNORECASE)
-_ENDS_ON_PREPOSITION = re.compile(r"\b(?:to|into|onto|with|at|for|of|from)\s*(?:\.\.\.|\u2026)?[\s.?!]*$",
-                                  re.IGNORECASE)
-_OBJECT_BEFORE = re.compile(r"\b(?:the|which|what)\s+\w+(?:\s+\w+)?\s+(?:that\s+|which\s+)?(?:you|i|we|they)\b",
-                            re.IGNORECASE)
-
-
-def _unfinished(clause: str) -> bool:
-    text = clause.strip()
-    return bool(_ENDS_ON_ARTICLE.search(text)) or bool(_ENDS_ON_PREPOSITION.search(text)
-                                                         and not _OBJECT_BEFORE.search(text))
-
-
 def classify(clause: str) -> ClauseKind:
     opening = FILLER.match(clause.strip())  # what is said before a request without changing it
     said_first = opening.group(0) if opening else ""
@@ -175,6 +159,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
+    text = _STRETCHED.sub(r"\1", text)  # "pleeease", "sooo": the word as written
     for part in _arrival_first(split_clauses(text)):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if clauses and clauses[-1].kind is ClauseKind.ABILITY and \
@@ -223,6 +208,10 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 any(c.kind is ClauseKind.REQUEST and done in words(c.text) for c in clauses) and \
                 classify(rest := bare[sequence.end():]) is ClauseKind.REQUEST:
             kind, part = ClauseKind.REQUEST, rest.strip()  # "stop, and once you've stopped go to …": the next step
+        elif sequence and _BACK_ONLY.match(bare[sequence.end():]) and any(c.kind is ClauseKind.REQUEST
+                                                                          for c in clauses):
+            clauses.append(Clause(part, ClauseKind.STATEMENT))  # "video-chat Clara, and once you've got her, …"
+            continue
         elif sequence:
             # "once you've checked your battery, …": that first, said as the request it is ("check
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
@@ -319,12 +308,15 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         asked = asked_as_question(text)
         clauses = [Clause(c.text, ClauseKind.ABILITY) if c.kind is ClauseKind.REQUEST
                    and (asked or asked_as_question(c.text)) else c for c in clauses]
-    if clauses and clauses[-1].kind is ClauseKind.REQUEST and _unfinished(clauses[-1].text):
+    if clauses and clauses[-1].kind is ClauseKind.REQUEST and unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
     return Intent(tuple(clauses), answering)
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+_STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
+# "…, and once you've got her, …": the step before done, then what follows
+_BACK_ONLY = re.compile(r"^\s*(?:him|her|them|it|that|through)?\W*$", re.IGNORECASE)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
                     r"|(?:good|dear|bless) (?:me|grief|lord)|goodness)\b", re.IGNORECASE)  # "no, sorry, I'm muddled"
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)

@@ -1,7 +1,7 @@
 """The words `intent` reads requests with, and how it splits them (`words`): verbs that start a
 request, question words, words that make an object specific, the verbs a person's own plan may
-ask the robot for, and the base form of a participle ("once you've gone to the bedroom" is "go
-to the bedroom")."""
+ask the robot for, the base form of a participle ("once you've gone to the bedroom" is "go
+to the bedroom"), and whether a request was cut off before its object (`unfinished`)."""
 
 from __future__ import annotations
 
@@ -21,8 +21,9 @@ FILLER = re.compile(
     r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all)\b[\s,]*)+",
     re.IGNORECASE,
 )
-TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please)?|please|thanks|thank you|"
-             r"dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|sweetheart|lovey)$", re.IGNORECASE)
+TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please)?|(?:pretty )?please|"
+             r"thanks|thank you|dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|sweetheart|lovey)$",
+             re.IGNORECASE)
 
 # Putting a request off.
 LATER = re.compile(
@@ -142,3 +143,21 @@ def fragment(part: str) -> bool:
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
     return not _HEDGE.match(text) and bool(re.match(
         r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))
+
+
+# An utterance whose last request ends on a word that needs one after it was cut off
+# (speech-to-text keeps what was said: "please switch the…", "can you drive over to?"); the
+# model would fill in the rest. A preposition may end a finished request whose object came
+# before it ("list the places you can drive to"); an article or a conjunction may not.
+_ENDS_ON_ARTICLE = re.compile(r"\b(?:the|a|an|my|your|and|or)\s*(?:\.\.\.|\u2026)?[\s.?!]*$", re.IGNORECASE)
+_ENDS_ON_PREPOSITION = re.compile(r"\b(?:to|into|onto|with|at|for|of|from)\s*(?:\.\.\.|\u2026)?[\s.?!]*$",
+                                  re.IGNORECASE)
+_OBJECT_BEFORE = re.compile(r"\b(?:the|which|what)\s+\w+(?:\s+\w+)?\s+(?:that\s+|which\s+)?(?:you|i|we|they)\b",
+                            re.IGNORECASE)
+
+
+def unfinished(clause: str) -> bool:
+    """The request ends where a word must follow: the person was cut off."""
+    text = clause.strip()
+    return bool(_ENDS_ON_ARTICLE.search(text)) or bool(_ENDS_ON_PREPOSITION.search(text)
+                                                         and not _OBJECT_BEFORE.search(text))
