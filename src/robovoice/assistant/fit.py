@@ -132,8 +132,9 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     return False
 
 
-# "Tell Anna cheerio from me" (text test v23, during a call with her): a message for somebody
-# names them without asking to act on them; only the action's own words make it fit.
+# "Tell Anna I'm feeling better" (during a call with her): a message for somebody names them
+# without asking to act on them; only the action's own words make it fit. (A goodbye such as
+# "tell Anna cheerio", text test v23's, is no request at all: `lexicon.FAREWELL`.)
 _MESSAGE_VERBS = frozenset(stem(w) for w in ("tell", "ask", "remind", "let", "wish", "say", "send"))
 
 
