@@ -4,7 +4,15 @@ from __future__ import annotations
 
 from robovoice.llm.base import ToolSpec
 from robovoice.voice.confidence_eval import sim_hint
-from robovoice.voice.vocabulary import MAX_HINT_CHARS, STOP_HINT, command_hint, restore_end, restore_titles
+from robovoice.voice.vocabulary import (
+    MAX_HINT_CHARS,
+    STOP_HINT,
+    command_hint,
+    restore,
+    restore_end,
+    restore_ring,
+    restore_titles,
+)
 
 NAVIGATE = ToolSpec("navigate_to", "Drive somewhere.", {
     "type": "object",
@@ -80,3 +88,22 @@ def test_and_the_call_alone_is_end_the_call_again() -> None:
     assert restore_end("and the kitchen.", hint) == "and the kitchen."
     assert restore_end("Go to the kitchen and the call.", hint) == "Go to the kitchen and the call."
     assert restore_end("And the call.", command_hint("hey jarvis", [NAVIGATE, CALL])) == "And the call."
+
+
+def test_bring_before_a_name_the_robot_can_call_is_ring_again() -> None:
+    """Dev clips audio-dev-ring: Whisper tiny.en wrote "ring Clara" as "bring Clara" in 11 of 32,
+    and "bring Anna" read as a drive to "Anna". The sim's hint names a call action and its
+    contacts, so "bring <contact>" at a clause's start and end is "ring <contact>"."""
+    hint = sim_hint()
+    assert restore_ring("Bring Clara.", hint) == "Ring Clara."
+    assert restore_ring("Please bring Anna.", hint) == "Please ring Anna."
+    assert restore_ring("bring Ben now, please.", hint) == "ring Ben now, please."
+    assert restore_ring("bring Clara, then go to the kitchen.", hint) == "ring Clara, then go to the kitchen."
+    assert restore_ring("go to the bedroom, and bring Ben.", hint) == "go to the bedroom, and ring Ben."
+    assert restore("bring dock for Weber.", hint) == "ring Dr. Weber."
+    # something to carry after the name, a third person bringing, a name it cannot call, no call action
+    assert restore_ring("Bring Ben his tea.", hint) == "Bring Ben his tea."
+    assert restore_ring("Clara will bring Ben.", hint) == "Clara will bring Ben."
+    assert restore_ring("bring Fred.", hint) == "bring Fred."
+    assert restore_ring("Bring Kitchen.", hint) == "Bring Kitchen."
+    assert restore_ring("bring Anna.", command_hint("hey jarvis", [NAVIGATE])) == "bring Anna."

@@ -47,7 +47,7 @@ from robovoice.voice.utterance import (
     trim_to_wake,
     wav_bytes,
 )
-from robovoice.voice.vocabulary import restore_end, restore_titles
+from robovoice.voice.vocabulary import restore
 
 WAKE_ONLY_S = 0.2  # without STT: less speech than this after the wake word = wake word alone
 # "One moment." waits at least this long for the model even when speech-to-text already used up
@@ -148,7 +148,7 @@ class CommandTurn:
     def _judged(self, heard: Transcript, verdict: Verdict) -> tuple[str, str | None]:
         c = self._c
         text = strip_wake_words(heard.text, c.config.wake_phrase) if verdict.wake_at is not None else heard.text.strip()
-        return restore_end(restore_titles(text, c.hint), c.hint), unsure_reason(heard, text, c.config.confidence)
+        return restore(text, c.hint), unsure_reason(heard, text, c.config.confidence)
 
     async def run(self, utt: HeardUtterance, verdict: Verdict, speculation: Transcription | None) -> None:
         c = self._c
