@@ -171,7 +171,7 @@ def test_every_refusal_reason_has_words_of_the_robots_own(reason: str) -> None:
     "The projector is now on.", "I have turned on the projector.", "I've started a video call with Anna.",
     "Calling Anna now.", "On my way to the kitchen.", "Done.", "OK, done!", "Sure, heading to the hallway.",
     "The projector has been switched on.", "I\u2019m now calling Ben.", "The video call with Ben has started.",
-    "The robot is now at the front door.", "I am in a video call with Clara now.",
+    "The robot is now at the front door.", "I am in a video call with Clara now.", "I am in the living room now.",
 ])
 def test_a_sentence_claiming_an_action_is_recognised(sentence: str) -> None:
     assert claimed_action_in(sentence) is not None
@@ -208,6 +208,10 @@ def _turn(*calls: tuple[str, dict[str, object], str | None]) -> TurnActions:
     # names an action never called, after another ran (text v19: a drive, then "the projector is now on")
     (_turn(("navigate_to", {"target": "bathroom"}, None)), "The projector is now on.", True),
     (_turn(("navigate_to", {"target": "bathroom"}, None)), "I am now in the bathroom.", False),
+    (_turn(("navigate_to", {"target": "bedroom"}, None)), "I am in the bedroom now.", False),
+    # dev clip rg-32 ("bring men" heard): the second drive was refused, and the model said it had arrived
+    (_turn(("navigate_to", {"target": "bedroom"}, None), ("navigate_to", {"target": "living room"}, "not_requested")),
+     "I am in the living room now.", True),
     (_turn(("navigate_to", {"target": "bathroom"}, None), ("set_projector_power", {"on": True}, None)),
      "The projector is now on.", False),
     (_turn(("start_video_call", {"contact": "Ben"}, "not_requested")), "I won't call Ben.", False),  # a denial

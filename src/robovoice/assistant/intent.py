@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.amend import amend, go_list
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
     ARRIVED,
@@ -159,12 +160,17 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
+    amending = False  # right after a bare "sorry" or "I mean" (amend)
     text = _STRETCHED.sub(r"\1", text)  # "pleeease", "sooo": the word as written
     for part in _arrival_first(split_clauses(text)):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if clauses and clauses[-1].kind is ClauseKind.ABILITY and \
                     classify(f"{clauses[-1].text} {part.strip()}") is ClauseKind.REQUEST:
                 clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "would you ever …, please?"
+            continue
+        fixed, amending = amend(clauses, part, text, amending)
+        if fixed is not None:  # "ring Clara, I mean Ben"; "…, sorry, the bedroom" (amend)
+            clauses = fixed
             continue
         bare = FILLER.sub("", part.strip()).strip()
         if _OPINION.match(bare) and clauses and clauses[-1].kind is ClauseKind.REQUEST and \
@@ -310,7 +316,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                    and (asked or asked_as_question(c.text)) else c for c in clauses]
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
-    return Intent(tuple(clauses), answering)
+    return Intent(tuple(go_list(clauses, text)), answering)
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)

@@ -155,6 +155,7 @@ _CLAIM = re.compile(
     r"|\b(?:is|are|'s|has been|have been) (?:now )?(?:turned|switched|started|ended|stopped) (?:on|off|now)?"
     r"|\b(?:has|have) (?:now |just )?(?:started|ended|begun|connected)\b"
     r"|\b(?:am|'m|is|are|'s) (?:now (?:at|in) the|in a (?:video )?call)\b"
+    r"|\b(?:i am|i'm) (?:at|in) the (?:\w+ ){1,3}now\b"  # "I am in the living room now." (a refused drive)
     r"|\bon (?:my|its|our) way\b"
     r"|^(?:(?:ok|okay|sure|alright|all right|right)\W+)?done\b"
     r"|\b(?:i|i'?ve|i have|i'?m|i am|we'?re|it'?s|it is)\s+(?:now\s+|just\s+|already\s+)?"

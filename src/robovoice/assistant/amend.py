@@ -1,0 +1,108 @@
+"""Two readings of a list of steps that the clause-by-clause reading in `intent` cannot make
+one clause at a time.
+
+- **A correction said without "no"**: "ring Clara — sorry, I mean Ben — and …", "go to the
+  kitchen, or rather the bedroom". A place, a person or a state said right after "sorry",
+  "I mean", "or rather", "correction" or "make that" puts right the last request, as
+  "…, no, Ben" does; without this it read as one more step ("ring Clara" and "Ben").
+- **A list of places sent off with a bare "go"**: "Kitchen, then bedroom, then the dock. Off
+  you go." The places alone read as talk (a bare "the kitchen" is no request); the "go" with
+  no place of its own says they are its steps.
+
+Written on the dev set (tests/data/eval/text.jsonl: amend-*, golist-*).
+"""
+
+from __future__ import annotations
+
+import re
+
+from robovoice.assistant.lexicon import FILLER, TAG, WITHDRAWAL, fragment, words
+from robovoice.assistant.reading import Clause, ClauseKind
+
+_MARK = re.compile(r"^(?:sorry|pardon(?: me)?|i mean[t]?|or rather|rather|correction|make (?:that|it))\b[\s,:;.-]*",
+                   re.IGNORECASE)
+# what follows "I mean" and is no place or person: "…, I mean it", "…, sorry love"
+_NOT_A_VALUE = re.compile(r"^(?:it|that|this|so|well|business|what i say|honestly|really|again|everyone|folks|all"
+                          r"|about (?:that|this)|my (?:mistake|fault|bad|error)|wrong one)$", re.IGNORECASE)
+_ARTICLES = frozenset({"the", "a", "my", "your", "to"})
+_ON_WORDS = r"\b(?:and|then|next|after|afterwards|also|too|plus|as well)\b"  # "…, then the bedroom": one more step
+_GOES_ON = re.compile(_ON_WORDS, re.IGNORECASE)
+
+
+def marker_rest(part: str, text: str) -> str | None:
+    """What follows a correction word that starts `part` ("" for a bare "sorry"), or None; None
+    too for a bare one that the utterance `text` goes on from ("…, sorry, and then …": the clause
+    split drops that "and then")."""
+    said = part.strip()
+    mark = _MARK.match(said)
+    if mark is None:
+        return None
+    if not said[mark.end():] and re.search(re.escape(said) + r"[\s,;:.\u2013\u2014-]*" + _ON_WORDS, text,
+                                          re.IGNORECASE):
+        return None
+    return said[mark.end():].strip()
+
+
+def puts_right(said: str) -> bool:
+    """Whether `said` (what follows a correction word, or all of the clause after a bare one)
+    names the value that replaces the last request's: a place, a person, "on" or "off"."""
+    value = FILLER.sub("", said).strip(" .,!?")
+    return bool(value) and fragment(said) and not _GOES_ON.search(said) and not _NOT_A_VALUE.match(value) \
+        and not TAG.match(value) and not WITHDRAWAL.match(value)
+
+
+def last_request(clauses: list[Clause]) -> int | None:
+    """The index of the request said last, when nothing but a bare correction word came after
+    it ("…, not the kitchen, I meant …" is put right already), or None."""
+    for i in range(len(clauses) - 1, -1, -1):
+        if clauses[i].kind is ClauseKind.REQUEST:
+            return i
+        if not _MARK.fullmatch(clauses[i].text.strip()):
+            return None
+    return None
+
+
+def repeats(said: str, request: str) -> bool:
+    """Whether `said` only says again what `request` names ("the hallway, I meant the hallway")."""
+    return set(words(FILLER.sub("", said))) - _ARTICLES <= set(words(request))
+
+
+def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[list[Clause] | None, bool]:
+    """The clauses with `part` read as a correction (None: it is none), and whether the next
+    clause may be one (after a bare "sorry"). `pending`: the clause before was a bare one."""
+    last, rest = last_request(clauses), marker_rest(part, text)
+    if last is None:
+        return None, False
+    if rest == "":
+        return [*clauses, Clause(part, ClauseKind.STATEMENT)], True
+    said = rest if rest is not None else part if pending else None
+    if not said or not puts_right(said) or repeats(said, clauses[last].text):
+        return None, False
+    fixed = [Clause(c.text, ClauseKind.NEGATED) if i == last else c for i, c in enumerate(clauses)]
+    state = re.fullmatch(r"\W*(on|off)\W*", FILLER.sub("", said), re.IGNORECASE)
+    if state and re.search(r"\b(?:on|off)\b", clauses[last].text, re.IGNORECASE):
+        # "turn the projector on, I mean off": a state names no thing; the request it puts right does
+        part = re.sub(r"\b(?:on|off)\b", state[1].lower(), clauses[last].text, flags=re.IGNORECASE)
+    return [*fixed, Clause(part, ClauseKind.REQUEST)], False
+
+
+_GO_ALONE = re.compile(r"^(?:go|go now|let'?s go|away you go|on you go|get going|get moving|go go go)$",
+                       re.IGNORECASE)
+
+
+def go_list(clauses: list[Clause], text: str) -> list[Clause]:
+    """`clauses` with the bare places of a "then" list made requests when a "go" without a
+    place of its own sends the robot off ("Bathroom, then bedroom. Go."); the "go" is then no
+    step of its own (nor after a list of requests: "Bathroom first, then your charger. Go
+    now."). A heading before a colon ("Evening round: …") stays talk."""
+    if "then" not in words(text):
+        return clauses
+    go = [i for i, c in enumerate(clauses)
+          if c.kind is ClauseKind.REQUEST and _GO_ALONE.match(FILLER.sub("", c.text.strip()).strip(" .!"))]
+    places = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.STATEMENT and fragment(c.text)
+              and not re.search(re.escape(c.text.strip()) + r"\s*:", text)]
+    others = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and i not in go]
+    if not go or not (places or others):
+        return clauses
+    return [Clause(c.text, ClauseKind.REQUEST) if i in places else
+            Clause(c.text, ClauseKind.STATEMENT) if i in go else c for i, c in enumerate(clauses)]

@@ -1,0 +1,54 @@
+"""Corrections said without "no", and a list of places sent off with a bare "go" (assistant/amend.py)."""
+
+from __future__ import annotations
+
+import pytest
+
+from robovoice.assistant.intent import read_request
+from robovoice.assistant.reading import ClauseKind
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Ring Clara, sorry, I mean Ben, and then go to the hallway.", ("I mean Ben", "go to the hallway")),
+    ("Ring Clara, I mean Ben.", ("I mean Ben",)),
+    ("Go to the bathroom, or rather the bedroom.", ("or rather the bedroom",)),
+    ("Head to the kitchen, correction, the living room.", ("the living room",)),
+    ("Turn the projector on, I mean off.", ("Turn the projector off",)),  # a state takes the request's words
+])
+def test_a_value_said_after_a_correction_word_puts_the_last_request_right(text: str, steps: tuple[str, ...]) -> None:
+    intent = read_request(text)
+    assert intent.steps == steps
+    assert intent.clauses[0].kind is ClauseKind.NEGATED
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Go to the kitchen, sorry, then the bedroom.", ("Go to the kitchen", "the bedroom")),  # one more step
+    ("Go to the kitchen, sorry, the bedroom after that.", ("Go to the kitchen", "the bedroom after that")),
+    ("Go to the kitchen please. Sorry, my dear.", ("Go to the kitchen please",)),
+    ("Call Ben, sorry for the bother.", ("Call Ben",)),
+    ("Switch the projector on. Sorry, I'm muddled today.", ("Switch the projector on",)),
+    # put right already: only what the "not" names is taken back
+    ("Go to the bedroom, then the kitchen, sorry, not the kitchen, I meant the living room.",
+     ("Go to the bedroom", "I meant the living room")),
+    # the same place said again is no correction
+    ("Go to the bathroom, no, sorry, the hallway, I meant the hallway.", ("the hallway",)),
+])
+def test_what_is_no_correction_leaves_the_requests_as_they_were(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+def test_i_mean_it_takes_nothing_back() -> None:
+    assert read_request("Go to the kitchen, I mean it.").clauses[0].kind is ClauseKind.REQUEST
+
+
+def test_places_in_a_then_list_sent_off_with_a_bare_go_are_its_steps() -> None:
+    assert read_request("Hallway, then the kitchen, then the front door. Off you go.").steps == (
+        "Hallway", "the kitchen", "the front door")
+    assert read_request("Evening round: bathroom, then bedroom, then back on your dock. Go.").steps == (
+        "bathroom", "bedroom", "back on your dock")  # the heading stays talk
+    assert read_request("Bathroom first, then back to your charger. Go now.").steps == (
+        "Bathroom first", "back to your charger")  # the "go" is no step of its own
+    # no "go", or a "go on" that may only say "carry on": talk stays talk
+    assert not read_request("Kitchen, then bedroom.").asks_action
+    assert not read_request("Ben rang, then Clara.").asks_action
+    assert read_request("I went to the kitchen, then the bedroom. Go on.").steps == ("Go on",)
