@@ -624,3 +624,34 @@ def test_a_hedge_or_an_uh_is_no_step(text: str) -> None:
     """Text test v26: "…, uh, then go wait at the front door for her, I guess" made "uh" and
     "I guess" steps of their own, and the model acted on them."""
     assert [s.lower() for s in read_request(text).steps] == ["go to the bedroom", "ring clara"]
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Living room, please, love.", ("Living room",)),  # a bare place with a "please" after the comma
+    ("Could we have the projector going? It's too dark for the slides.", ("Could we have the projector going",)),
+    ("can u ring ben pls", ("can you ring ben please",)),  # texting shorthand
+    ("pls go bathroom then charge urself", ("please go bathroom", "charge yourself")),
+    ("Please to call my daughter Anna, she waits.", ("please call my daughter Anna",)),  # "she waits": no step
+    ("Go to the kitchen and then, um, after that, switch the projector on.", ("Go to the kitchen",
+                                                                            "switch the projector on")),
+    ("Oh and before I forget, could you give Clara a bell?", ("could you give Clara a bell",)),  # names whom
+    ("Can you like, go to the bedroom and turn the projector on and stuff?", ("go to the bedroom",
+                                                                             "turn the projector on")),
+    ("First, switch on the projector; second, phone Anna.", ("switch on the projector", "phone Anna")),
+    ("Hit up Clara on video for me.", ("Hit up Clara on video for me",)),
+])
+def test_everyday_shorthand_asks_what_it_says(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize("text", [
+    "Leave the projector for now, just ring Ben.", "Forget the kitchen, go to the bedroom instead.",
+])
+def test_leaving_or_forgetting_a_thing_takes_it_back(text: str) -> None:
+    assert read_request(text).clauses[0].kind is ClauseKind.NEGATED
+
+
+def test_forgetting_in_talk_and_a_list_heading_with_please_ask_nothing() -> None:
+    assert not read_request("Remind me who I can ring, I always forget the names.").asks_action
+    assert read_request("Three things, please: turn the projector on, drive to the kitchen.").steps == (
+        "turn the projector on", "drive to the kitchen")

@@ -1,6 +1,8 @@
-"""Two readings of a list of steps that the clause-by-clause reading in `intent` cannot make
-one clause at a time.
+"""Readings of corrections and lists of steps that the clause-by-clause reading in `intent`
+cannot make one clause at a time.
 
+- **A correction that names what it takes back**: "…, no, not Ben", "actually, skip the
+  kitchen" (`named_back`): just the requests that name it are taken back.
 - **A correction said without "no"**: "ring Clara — sorry, I mean Ben — and …", "go to the
   kitchen, or rather the bedroom". A place, a person or a state said right after "sorry",
   "I mean", "or rather", "correction" or "make that" puts right the last request, as
@@ -16,7 +18,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import FILLER, TAG, WITHDRAWAL, fragment, words
+from robovoice.assistant.lexicon import FILLER, NOT_NAMES, NOT_THAT, TAG, WITHDRAWAL, fragment, words
 from robovoice.assistant.reading import Clause, ClauseKind
 
 _MARK = re.compile(r"^(?:sorry|pardon(?: me)?|i mean[t]?|or rather|rather|correction|make (?:that|it))\b[\s,:;.-]*",
@@ -106,3 +108,15 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
         return clauses
     return [Clause(c.text, ClauseKind.REQUEST) if i in places else
             Clause(c.text, ClauseKind.STATEMENT) if i in go else c for i, c in enumerate(clauses)]
+
+
+def named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int] | None:
+    """The requests said before that a "not Ben" or "skip the kitchen" names (None when it names
+    none of them, or is no such clause): just those are taken back."""
+    match = NOT_THAT.match(bare)
+    if match is None:
+        return None
+    named = set(words(match.group(1))) - NOT_NAMES
+    hit = {i for i, c in enumerate(clauses)
+           if (c.kind is ClauseKind.REQUEST or i in undone) and named & set(words(c.text))}
+    return hit or None

@@ -25,7 +25,8 @@ _CAN_GENERIC = re.compile(
     re.IGNORECASE,
 )
 # … unless it names whom or where: "could you make a video call to Ben?" asks for one now.
-_NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)")
+_NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)"
+                    r"|\bgive (?:(?:the|my|our) \w+|Dr\.? [A-Z]\w*|[A-Z][a-z]+) an? \w+")  # "give Clara a bell"
 # … or a bare plural with no article or owner before it ("can you send text messages?",
 # "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
 _CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IGNORECASE)

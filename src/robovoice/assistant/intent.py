@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.amend import amend, go_list
+from robovoice.assistant.amend import amend, go_list, named_back
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
     ARRIVED,
@@ -53,17 +53,17 @@ from robovoice.assistant.lexicon import (
     LATER,
     LATER_ONLY,
     NOT_A_VERB,
-    NOT_NAMES,
-    NOT_THAT,
     OWN_PLAN,
     QUESTION_WORDS,
     RELATIONS,
     RHETORICAL,
     TAG,
+    VAGUE,
     WITHDRAWAL,
     YOU_DO,
     base_form,
     fragment,
+    plain,
     unfinished,
     words,
 )
@@ -75,7 +75,8 @@ _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
     r"hold off|rather not|rather you didn'?t|no,|gonnae no|"
-    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace)|"
+    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace|for now|for the moment"
+    r"|for the time being)|^forget (?:about )?(?:the|my|your|going|calling|ringing|phoning)\b|"
     r"let (?:it|that|them) be|don'?t touch)\b"
     r"|\bnot\s*$|^not\b",  # "…, not Ben"
     re.IGNORECASE,
@@ -83,7 +84,7 @@ _NEGATION = re.compile(
 _MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
-    r"^gonnae\b(?! no\b)|^time to\b|^(?:off|away) you go\b|^go and\b|"
+    r"^gonnae\b(?! no\b)|^time to\b|^(?:off|away) you go\b|^go and\b|^(?:could|can|may) we (?:have|get)\b|"
     # advice to the robot is a request, not a past it missed ("you ought to charge up", "I think
     # you'd better ring Clara"; not "you should have seen it", "you must be tired")
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
@@ -161,12 +162,11 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
     amending = False  # right after a bare "sorry" or "I mean" (amend)
-    text = _STRETCHED.sub(r"\1", text)  # "pleeease", "sooo": the word as written
+    text = plain(text)  # "pleeease", "can u": the words as said
     for part in _arrival_first(split_clauses(text)):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
-            if clauses and clauses[-1].kind is ClauseKind.ABILITY and \
-                    classify(f"{clauses[-1].text} {part.strip()}") is ClauseKind.REQUEST:
-                clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "would you ever …, please?"
+            if clauses and _tag_asks(clauses[-1], part):  # "would you ever …, please?"; "Bedroom, please."
+                clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)
             continue
         fixed, amending = amend(clauses, part, text, amending)
         if fixed is not None:  # "ring Clara, I mean Ben"; "…, sorry, the bedroom" (amend)
@@ -189,6 +189,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             if rest and classify(rest) is ClauseKind.REQUEST:
                 part = bare = rest  # "…, and after let's go to the kitchen": the next step
                 kind = ClauseKind.REQUEST
+        if VAGUE.match(bare) and clauses:  # "…, turn the projector on and stuff": no step
+            clauses.append(Clause(part, ClauseKind.STATEMENT))
+            continue
         if _LIST_INTRO.match(bare):  # "three little jobs for you: the hallway, then …": each is asked
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             corrected = True
@@ -279,7 +282,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind = ClauseKind.STATEMENT  # "tell Anna cheerio": words for the call, not a step (lexicon)
         aside = kind is ClauseKind.STATEMENT and bool(_ASIDE.match(bare))  # "…, no, sorry, I'm muddled, …"
         corrected = corrected and (not bare or aside)
-        if (named := _named_back(bare, clauses, undone)) is not None:
+        if (named := named_back(bare, clauses, undone)) is not None:
             # "…, no, not Ben", "actually, skip the kitchen": only the request that names it is withdrawn;
             # with none left, a place or a person said next is the one meant ("no, not the kitchen, the hallway")
             clauses = [Clause(c.text, ClauseKind.NEGATED if i in named else
@@ -320,7 +323,6 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
-_STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
 # "…, and once you've got her, …": the step before done, then what follows
 _BACK_ONLY = re.compile(r"^\s*(?:him|her|them|it|that|through)?\W*$", re.IGNORECASE)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
@@ -331,7 +333,7 @@ _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |yo
                                r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 _ARTICLES = frozenset({"the", "a", "my", "your", "to"})
-_AFTER = re.compile(r"^after(?:wards)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": that reads as no request
+_AFTER = re.compile(r"^after(?:wards| that| this)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": no request
 _LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
                          r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
@@ -348,6 +350,15 @@ _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # (not in what it is for: "put the projector on so I can see her" is a thing of its own)
 _BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
+
+
+def _tag_asks(before: Clause, tag: str) -> bool:
+    """Whether the tag makes the clause before it a request: an ability question that asks with
+    it ("would you ever …, please?"), a bare place or thing with "please" ("Bedroom, please.")."""
+    if before.kind is ClauseKind.ABILITY:
+        return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
+    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and "please" in tag.lower() \
+        and not _LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
 
 
 def _arrival_first(parts: list[str]) -> list[str]:
@@ -382,15 +393,3 @@ def _reason(bare: str, clauses: list[Clause]) -> bool:
     plan = OWN_PLAN.match(bare)
     return (plan is not None and plan.group(1).lower() not in ASKING_VERBS
             and any(c.kind is ClauseKind.REQUEST for c in clauses))
-
-
-def _named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int] | None:
-    """The requests said before that a "not Ben" or "skip the kitchen" names (None when it names
-    none of them, or is no such clause): just those are taken back."""
-    match = NOT_THAT.match(bare)
-    if match is None:
-        return None
-    named = set(words(match.group(1))) - NOT_NAMES
-    hit = {i for i, c in enumerate(clauses)
-           if (c.kind is ClauseKind.REQUEST or i in undone) and named & set(words(c.text))}
-    return hit or None

@@ -16,13 +16,15 @@ def words(text: str) -> list[str]:
 # Said before or around a request without changing it.
 FILLER = re.compile(
     r"^(?:(?:please|kindly|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|"
-    r"firstly|next|finally|just|off you|i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
+    r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|"
+    r"i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all)\b[\s,]*)+",
     re.IGNORECASE,
 )
-TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please)?|(?:pretty )?please|"
-             r"thanks|thank you|dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|sweetheart|lovey)$",
+TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please| like)?|"
+             r"(?:pretty )?please|thanks|thank you|dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|"
+             r"sweetheart|lovey)$",
              re.IGNORECASE)
 
 # Putting a request off.
@@ -41,6 +43,7 @@ IMPERATIVES = frozenset({
     "join", "photograph", "snap", "capture", "shut", "try", "nip", "plug", "trot", "toddle", "scoot", "wander", "zip",
     "kill", "gie", "enter",  # "kill the projector"; Scots "gie Clara a call" (give); "enter the kitchen"
     "place", "telephone", "proceed",  # formal: "place a call to …", "proceed to the living room"
+    "hit", "dip", "bounce",  # young people's: "hit up Clara", "dip to the hallway"
 })
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
@@ -133,6 +136,8 @@ FAREWELL = re.compile(rf"^(?:(?:tell|wish|bid) (?:our |my )?\w+(?: \w+)? (?:a |m
 
 # A hedge said after a request: "…, then go and wait at the front door for her, I guess" (text
 # test v26). It asks nothing, though it is short enough to look like "…, then the bedroom".
+# a person doing something, said in two words ("…, she waits", "he knows"): no place or person asked for
+_SUBJECT_VERB = re.compile(r"^(?:he|she|they|we|i|it|there) \w+$")
 _HEDGE = re.compile(r"^(?:i (?:guess|suppose|think|reckon|expect|imagine)|you know|y'know|if you like|or something"
                     r"|or whatever|i'd say|mind you)$", re.IGNORECASE)
 
@@ -141,7 +146,7 @@ def fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben" (not a hedge: "I guess")."""
     text = FILLER.sub("", part.strip()).strip().lower()
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
-    return not _HEDGE.match(text) and bool(re.match(
+    return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and bool(re.match(
         r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))
 
 
@@ -161,3 +166,21 @@ def unfinished(clause: str) -> bool:
     text = clause.strip()
     return bool(_ENDS_ON_ARTICLE.search(text)) or bool(_ENDS_ON_PREPOSITION.search(text)
                                                          and not _OBJECT_BEFORE.search(text))
+
+
+# Typed the way people text, and "pleeease": the words as a request reads them ("can u ring ben
+# pls" is "can you ring ben please"; "please to call my daughter", as a learner says it)
+_TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz": "please", "thx": "thanks"}
+_TEXTED_WORD = re.compile(r"\b(" + "|".join(_TEXTED) + r")\b", re.IGNORECASE)
+_STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
+
+
+def plain(text: str) -> str:
+    """`text` with texting shorthand spelled out and stretched letters said once."""
+    text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _STRETCHED.sub(r"\1", text))
+    return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
+
+
+# Vague words that end a list of requests ("…, and turn the projector on and stuff"): no step
+VAGUE = re.compile(r"^(?:stuff|things|everything|whatever|all that|and so on|so on|that sort of thing|etc)$",
+                   re.IGNORECASE)
