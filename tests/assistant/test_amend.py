@@ -51,4 +51,5 @@ def test_places_in_a_then_list_sent_off_with_a_bare_go_are_its_steps() -> None:
     # no "go", or a "go on" that may only say "carry on": talk stays talk
     assert not read_request("Kitchen, then bedroom.").asks_action
     assert not read_request("Ben rang, then Clara.").asks_action
+    assert read_request("Ben phoned, then Clara. Off you go.").steps == ("Off you go",)  # news, a name: no place
     assert read_request("I went to the kitchen, then the bedroom. Go on.").steps == ("Go on",)

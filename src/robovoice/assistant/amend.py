@@ -88,6 +88,8 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
     return [*fixed, Clause(part, ClauseKind.REQUEST)], False
 
 
+# somebody who did something ("Ben phoned, then Clara. Off you go."): news, not a place
+_DID = re.compile(r"^[A-Z]\w* (?:\w+ed|rang|rung|came|went|left|said|told|wrote|sent)$")
 _GO_ALONE = re.compile(r"^(?:go|go now|let'?s go|away you go|on you go|get going|get moving|go go go)$",
                        re.IGNORECASE)
 
@@ -102,7 +104,8 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
     go = [i for i, c in enumerate(clauses)
           if c.kind is ClauseKind.REQUEST and _GO_ALONE.match(FILLER.sub("", c.text.strip()).strip(" .!"))]
     places = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.STATEMENT and fragment(c.text)
-              and not re.search(re.escape(c.text.strip()) + r"\s*:", text)]
+              and not re.search(re.escape(c.text.strip()) + r"\s*:", text) and not _DID.match(c.text.strip())
+              and not _a_name(c.text.strip(), text)]
     others = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and i not in go]
     if not go or not (places or others):
         return clauses
@@ -120,3 +123,11 @@ def named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int] 
     hit = {i for i, c in enumerate(clauses)
            if (c.kind is ClauseKind.REQUEST or i in undone) and named & set(words(c.text))}
     return hit or None
+
+
+def _a_name(said: str, text: str) -> bool:
+    """Whether `said` opens with a capital inside a sentence of `text` ("…, then Clara"): a
+    person, not a place (a place is written small there: "…, then the kitchen")."""
+    at = text.find(said)
+    before = re.sub(r"(?:\b(?:and|then)\b|[\s,;\u2013\u2014-])*$", "", text[:max(at, 0)])
+    return said[:1].isupper() and bool(before) and before[-1] not in ".!?:"
