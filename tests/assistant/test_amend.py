@@ -53,3 +53,16 @@ def test_places_in_a_then_list_sent_off_with_a_bare_go_are_its_steps() -> None:
     assert not read_request("Ben rang, then Clara.").asks_action
     assert read_request("Ben phoned, then Clara. Off you go.").steps == ("Off you go",)  # news, a name: no place
     assert read_request("I went to the kitchen, then the bedroom. Go on.").steps == ("Go on",)
+
+
+def test_places_in_a_then_list_ending_on_the_way_back_are_its_steps() -> None:
+    assert read_request("Kitchen, then hallway, then back to base.").steps == ("Kitchen", "hallway", "back to base")
+    assert read_request("Anna rang, then Ben, and then back to dock.").steps == ("back to dock",)  # names stay talk
+    assert read_request("Bathroom, then the living room, please.").steps == ("Bathroom", "the living room")
+
+
+def test_a_corrected_step_is_worded_with_the_request_it_puts_right() -> None:
+    intent = read_request("Three jobs: go to the hallway, switch the projector on, then phone Clara, no, Ben.")
+    assert intent.steps == ("go to the hallway", "switch the projector on", "Ben")
+    assert intent.worded_steps == ("go to the hallway", "switch the projector on", "phone Clara, I mean Ben")
+    assert read_request("Go to the kitchen, then the bedroom.").worded_steps == ("Go to the kitchen", "the bedroom")

@@ -655,3 +655,26 @@ def test_forgetting_in_talk_and_a_list_heading_with_please_ask_nothing() -> None
     assert not read_request("Remind me who I can ring, I always forget the names.").asks_action
     assert read_request("Three things, please: turn the projector on, drive to the kitchen.").steps == (
         "turn the projector on", "drive to the kitchen")
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("yo bot phone clara rn, she's waiting lol", ("yo robot phone clara right now",)),
+    ("switch the projector on n go to the kitchen", ("switch the projector on", "go to the kitchen")),
+    ("wait, what places do you know? fine, go to the front door after", ("what places do you know",
+                                                                         "go to the front door after")),
+    ("wait which rooms do you know? go to the hallway after", ("wait which rooms do you know",
+                                                                "go to the hallway after")),  # a question
+])
+def test_texting_words_and_a_wait_before_a_question(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+def test_leave_the_thing_leaves_it_be_and_leave_the_room_goes() -> None:
+    assert read_request("Leave it, leave the projector, the baby's asleep.").refusal is ClauseKind.NEGATED
+    assert read_request("Leave the kitchen and go to the hallway.").steps == ("Leave the kitchen", "go to the hallway")
+
+
+def test_an_ability_question_about_stopping_does_not_halt() -> None:
+    from robovoice.assistant.gate import halts
+    assert not halts(read_request("Hypothetically, if the cat ran in front of you, could you stop in time?"))
+    assert halts(read_request("Hold it! Stay put!"))

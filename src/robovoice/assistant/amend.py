@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import FILLER, NOT_NAMES, NOT_THAT, TAG, WITHDRAWAL, fragment, words
+from robovoice.assistant.lexicon import FILLER, IMPERATIVES, NOT_NAMES, NOT_THAT, TAG, WITHDRAWAL, fragment, words
 from robovoice.assistant.reading import Clause, ClauseKind
 
 _MARK = re.compile(r"^(?:sorry|pardon(?: me)?|i mean[t]?|or rather|rather|correction|make (?:that|it))\b[\s,:;.-]*",
@@ -88,28 +88,40 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
     return [*fixed, Clause(part, ClauseKind.REQUEST)], False
 
 
+
 # somebody who did something ("Ben phoned, then Clara. Off you go."): news, not a place
 _DID = re.compile(r"^[A-Z]\w* (?:\w+ed|rang|rung|came|went|left|said|told|wrote|sent)$")
+# a way to a place, said without a verb: "back to dock", "back on your dock", "on to the kitchen"
+_TOWARDS = re.compile(r"^(?:back|on|over) (?:to|into|onto|on) (?:the |my |your )?\w+(?: \w+)?$", re.IGNORECASE)
 _GO_ALONE = re.compile(r"^(?:go|go now|let'?s go|away you go|on you go|get going|get moving|go go go)$",
                        re.IGNORECASE)
 
 
 def go_list(clauses: list[Clause], text: str) -> list[Clause]:
     """`clauses` with the bare places of a "then" list made requests when a "go" without a
-    place of its own sends the robot off ("Bathroom, then bedroom. Go."); the "go" is then no
-    step of its own (nor after a list of requests: "Bathroom first, then your charger. Go
-    now."). A heading before a colon ("Evening round: …") stays talk."""
+    place of its own sends the robot off ("Bathroom, then bedroom. Go."; the "go" is then no
+    step of its own, nor after a list of requests: "Bathroom first, then your charger. Go
+    now."), or when the list ends or starts with a bare place that reads as a request already
+    ("Bathroom, then bedroom, then back to dock."). A heading before a colon ("Evening round:
+    …") stays talk, and so do a name inside a sentence and news ("Ben phoned, then Clara")."""
     if "then" not in words(text):
         return clauses
     go = [i for i, c in enumerate(clauses)
           if c.kind is ClauseKind.REQUEST and _GO_ALONE.match(FILLER.sub("", c.text.strip()).strip(" .!"))]
-    places = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.STATEMENT and fragment(c.text)
+    places = {i for i, c in enumerate(clauses) if c.kind is ClauseKind.STATEMENT and fragment(c.text)
               and not re.search(re.escape(c.text.strip()) + r"\s*:", text) and not _DID.match(c.text.strip())
-              and not _a_name(c.text.strip(), text)]
+              and not _a_name(c.text.strip(), text)}
     others = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and i not in go]
-    if not go or not (places or others):
-        return clauses
-    return [Clause(c.text, ClauseKind.REQUEST) if i in places else
+    if go and (places or others):
+        steps = places
+    else:
+        # "…, then back to dock"; "hallway, then bedroom, please" (a bare place asked with "please")
+        go, steps = [], {i for i, c in enumerate(clauses) if (_TOWARDS.match(FILLER.sub("", c.text.strip()))
+                         and (i in others or c.kind is ClauseKind.STATEMENT))
+                         or (i in others and fragment(c.text) and words(c.text)[0] not in IMPERATIVES)}
+        while grown := {i for i in places - steps if i - 1 in steps or i + 1 in steps}:
+            steps |= grown
+    return [Clause(c.text, ClauseKind.REQUEST) if i in steps else
             Clause(c.text, ClauseKind.STATEMENT) if i in go else c for i, c in enumerate(clauses)]
 
 

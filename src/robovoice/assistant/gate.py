@@ -141,8 +141,10 @@ _HALTING = re.compile(r"\b(?:stop\w*|halt|hold|stay|wait|hang on|freeze|forget|n
 
 def halts(intent: Intent | None) -> bool:
     """The words may ask the robot to stop or call off what it does, and do not say to carry on
-    ("keep going, don't stop"): then its stop or cancel runs even where nothing reads as a request."""
-    return intent is not None and not intent.carries_on and any(_HALTING.search(c.text) for c in intent.clauses)
+    ("keep going, don't stop") nor ask whether it could ("would you be able to stop dead, if I
+    shouted?": text test v32): then its stop or cancel runs even where nothing reads as a request."""
+    return intent is not None and not intent.carries_on and intent.refusal is not ClauseKind.ABILITY and any(
+        _HALTING.search(c.text) for c in intent.clauses)
 
 
 _BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)

@@ -78,7 +78,9 @@ _NEGATION = re.compile(
     r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace|for now|for the moment"
     r"|for the time being)|^forget (?:about )?(?:the|my|your|going|calling|ringing|phoning)\b|"
     r"let (?:it|that|them) be|don'?t touch)\b"
-    r"|\bnot\s*$|^not\b",  # "…, not Ben"
+    r"|\bnot\s*$|^not\b"  # "…, not Ben"
+    # "leave it, leave the projector": as it is (not "leave the kitchen": go out of it)
+    r"|^leave (?:the|my|your|that) (?!(?:\w+ )?(?:room|kitchen|hall|hallway|house|flat|lounge|garden)$)\w+(?: \w+)?$",
     re.IGNORECASE,
 )
 _MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"

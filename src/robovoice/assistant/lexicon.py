@@ -19,7 +19,8 @@ FILLER = re.compile(
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|"
     r"i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
-    r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all)\b[\s,]*)+",
+    r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all|yo|"
+    r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
 )
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please| like)?|"
@@ -170,7 +171,8 @@ def unfinished(clause: str) -> bool:
 
 # Typed the way people text, and "pleeease": the words as a request reads them ("can u ring ben
 # pls" is "can you ring ben please"; "please to call my daughter", as a learner says it)
-_TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz": "please", "thx": "thanks"}
+_TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz": "please", "thx": "thanks",
+           "n": "and", "rn": "right now", "bot": "robot"}
 _TEXTED_WORD = re.compile(r"\b(" + "|".join(_TEXTED) + r")\b", re.IGNORECASE)
 _STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
 

@@ -128,7 +128,7 @@ class Assistant:
         if answered is not None:  # "Yes, please." to "Shall I call Anna?": no model step
             return await self._answer_held(ChatMessage("user", user).text, *answered, metrics, emit)
         messages, intent = self._opening(user)
-        asked = intent.steps if intent is not None else ()
+        asked = intent.worded_steps if intent is not None else ()
         lookups = intent.lookups if intent is not None else ()
         # things asked the turn moved past without a call that ran: a look-up of a compound request
         # the model answered in words, a step whose refused call the model made again
@@ -349,7 +349,7 @@ class Assistant:
         answering = bool(self._history) and self._history[-1].text.rstrip().endswith("?")
         intent = read_request(user, answering=answering) if isinstance(user, str) else None
         if intent is not None and len(intent.steps) > 1:  # a compound request: one thing at a time, in order
-            messages.append(ChatMessage("user", step_hint(intent.steps[0], intent.lookups[0], first=True)))
+            messages.append(ChatMessage("user", step_hint(intent.worded_steps[0], intent.lookups[0], first=True)))
         return messages, intent
 
     async def _run_tool(

@@ -7,7 +7,7 @@ import re
 from dataclasses import dataclass
 from enum import Enum
 
-from robovoice.assistant.lexicon import FILLER, words
+from robovoice.assistant.lexicon import FILLER, fragment, words
 
 
 class ClauseKind(Enum):
@@ -46,6 +46,24 @@ class Intent:
         """The things asked, in the order they were said: the requests, and the questions
         asked beside them ("tell me where you are and how charged you are")."""
         return tuple(c.text for c in self._asked)
+
+    @property
+    def worded_steps(self) -> tuple[str, ...]:
+        """`steps` as the model is told them one at a time: a place or a person said as a
+        correction ("…, and then ring Ben, no, Anna") with the request it puts right ("ring Ben,
+        I mean Anna"). Alone, "Now do the next thing I asked: Anna." got "I don't know who Anna
+        is." (text test v32)."""
+        worded: list[str] = []
+        for i, c in enumerate(self.clauses):
+            if c.kind not in (ClauseKind.REQUEST, ClauseKind.QUESTION):
+                continue
+            before = [b for b in self.clauses[:i] if not _TAKING_BACK.match(FILLER.sub("", b.text.strip()))]
+            righted = before[-1] if before and before[-1].kind is ClauseKind.NEGATED else None
+            if righted is not None and fragment(c.text) and not _SAID_NOT.match(righted.text.strip()):
+                worded.append(f"{righted.text.strip()}, I mean {FILLER.sub('', c.text.strip()).strip()}")
+            else:
+                worded.append(c.text)
+        return tuple(worded)
 
     @property
     def lookups(self) -> tuple[bool, ...]:
@@ -94,3 +112,8 @@ _STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|aroun
 _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
                         re.IGNORECASE)
+# a bare "no" or "sorry" between a request and what puts it right; a request its own words
+# declined ("don't go to the kitchen") is no request a place after it puts right
+_TAKING_BACK = re.compile(r"^(?:no|nope|no wait|wait|sorry|correction|or rather|rather|i mean[t]?)?[\s,.!]*$",
+                          re.IGNORECASE)
+_SAID_NOT = re.compile(r"^(?:don'?t|do not|never|not|no need)\b", re.IGNORECASE)
