@@ -137,10 +137,10 @@ FAREWELL = re.compile(rf"^(?:(?:tell|wish|bid) (?:our |my )?\w+(?: \w+)? (?:a |m
 
 # A hedge said after a request: "…, then go and wait at the front door for her, I guess" (text
 # test v26). It asks nothing, though it is short enough to look like "…, then the bedroom".
-# a person doing something, said in two words ("…, she waits", "he knows"): no place or person asked for
-_SUBJECT_VERB = re.compile(r"^(?:he|she|they|we|i|it|there) \w+$")
 _HEDGE = re.compile(r"^(?:i (?:guess|suppose|think|reckon|expect|imagine)|you know|y'know|if you like|or something"
                     r"|or whatever|i'd say|mind you)$", re.IGNORECASE)
+# a person doing something, said in two words ("…, she waits", "he knows"): no place or person asked for
+_SUBJECT_VERB = re.compile(r"^(?:he|she|they|we|i|it|there) \w+$")
 
 
 def fragment(part: str) -> bool:
