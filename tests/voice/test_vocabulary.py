@@ -91,7 +91,7 @@ def test_and_the_call_alone_is_end_the_call_again() -> None:
 
 
 def test_bring_before_a_name_the_robot_can_call_is_ring_again() -> None:
-    """Dev clips audio-dev-ring: Whisper tiny.en wrote "ring Clara" as "bring Clara" in 11 of 32,
+    """Dev clips audio-dev-ring: Whisper tiny.en wrote "ring Clara" as "bring Clara" in 12 of 32,
     and "bring Anna" read as a drive to "Anna". The sim's hint names a call action and its
     contacts, so "bring <contact>" at a clause's start and end is "ring <contact>"."""
     hint = sim_hint()

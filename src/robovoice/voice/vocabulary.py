@@ -112,10 +112,11 @@ def restore_end(text: str, hint: str) -> str:
     return text
 
 
-# Whisper tiny.en hears "ring" before a name as "bring" ("Hey Jarvis, bring Clara."): 11 of the
-# 32 dev clips of audio-dev-ring, and once in each of audio tests v20, v21 and v22; "bring Anna"
-# then reads as a drive to "Anna". A robot that can call but not carry has no other use for
-# "bring" plus a name it can call and nothing after it ("bring Ben his tea" stays as heard).
+# Whisper tiny.en hears "ring" before a name as "bring" ("Hey Jarvis, bring Clara."): 12 of the
+# 32 dev clips of audio-dev-ring (3 more before "dock to/for/or Weber"), and once in each of
+# audio tests v20, v21 and v22; "bring Anna" then reads as a drive to "Anna". A robot that can
+# call but not carry has no other use for "bring" plus a name it can call and nothing after it
+# ("bring Ben his tea" stays as heard).
 _CALL_ACTION = re.compile(r"\b(?:start|make|place)(?: video| voice| phone)? call\b")
 _NAME_ITEM = re.compile(r"(?<=[,.] )((?:Dr\. )?[A-Z][\w'-]+(?: [A-Z][\w'-]+)*)(?=[,.])")
 _BEFORE_BRING = r"(^|[,.;!?]\s*|\b(?i:and|then|please|you|just|now|so|also|first)\s+)"
