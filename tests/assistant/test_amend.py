@@ -64,5 +64,11 @@ def test_places_in_a_then_list_ending_on_the_way_back_are_its_steps() -> None:
 def test_a_corrected_step_is_worded_with_the_request_it_puts_right() -> None:
     intent = read_request("Three jobs: go to the hallway, switch the projector on, then phone Clara, no, Ben.")
     assert intent.steps == ("go to the hallway", "switch the projector on", "Ben")
-    assert intent.worded_steps == ("go to the hallway", "switch the projector on", "phone Clara, I mean Ben")
+    assert intent.worded_steps == ("go to the hallway", "switch the projector on", "phone Ben")
     assert read_request("Go to the kitchen, then the bedroom.").worded_steps == ("Go to the kitchen", "the bedroom")
+
+
+def test_a_corrected_place_is_worded_as_the_drive_without_its_courtesy() -> None:
+    assert read_request("Could you go to the hallway, no wait, what am I saying, the front door.").worded_steps == (
+        "go to the front door",)
+    assert read_request("Leave the projector for now, just ring Ben.").worded_steps == ("just ring Ben",)  # a verb

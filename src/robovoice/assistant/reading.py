@@ -7,7 +7,7 @@ import re
 from dataclasses import dataclass
 from enum import Enum
 
-from robovoice.assistant.lexicon import FILLER, fragment, words
+from robovoice.assistant.lexicon import FILLER, IMPERATIVES, fragment, words
 
 
 class ClauseKind(Enum):
@@ -50,17 +50,19 @@ class Intent:
     @property
     def worded_steps(self) -> tuple[str, ...]:
         """`steps` as the model is told them one at a time: a place or a person said as a
-        correction ("…, and then ring Ben, no, Anna") with the request it puts right ("ring Ben,
-        I mean Anna"). Alone, "Now do the next thing I asked: Anna." got "I don't know who Anna
-        is." (text test v32)."""
+        correction ("…, and then ring Ben, no, Anna") in the request it puts right ("ring
+        Anna"). Alone, "Now do the next thing I asked: Anna." got "I don't know who Anna is."
+        (text test v32)."""
         worded: list[str] = []
         for i, c in enumerate(self.clauses):
             if c.kind not in (ClauseKind.REQUEST, ClauseKind.QUESTION):
                 continue
             before = [b for b in self.clauses[:i] if not _TAKING_BACK.match(FILLER.sub("", b.text.strip()))]
             righted = before[-1] if before and before[-1].kind is ClauseKind.NEGATED else None
-            if righted is not None and fragment(c.text) and not _SAID_NOT.match(righted.text.strip()):
-                worded.append(f"{righted.text.strip()}, I mean {FILLER.sub('', c.text.strip()).strip()}")
+            value = FILLER.sub("", c.text.strip()).strip()
+            if righted is not None and fragment(c.text) and words(value)[0] not in IMPERATIVES \
+                    and not _SAID_NOT.match(righted.text.strip()):
+                worded.append(_put_right(righted.text, value))
             else:
                 worded.append(c.text)
         return tuple(worded)
@@ -117,3 +119,15 @@ _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|t
 _TAKING_BACK = re.compile(r"^(?:no|nope|no wait|wait|sorry|correction|or rather|rather|i mean[t]?)?[\s,.!]*$",
                           re.IGNORECASE)
 _SAID_NOT = re.compile(r"^(?:don'?t|do not|never|not|no need)\b", re.IGNORECASE)
+_COURTESY = re.compile(r"^(?:(?:could|can|would|will) you|please|just|now)\b[\s,]*", re.IGNORECASE)
+
+
+def _put_right(request: str, value: str) -> str:
+    """`request` with its place or person replaced by `value`: "could you go to the hallway" and
+    "the front door" make "go to the front door"; "ring Ben" and "Anna" make "ring Anna"."""
+    plain = _COURTESY.sub("", request.strip()).strip()
+    way = re.match(r"^(.*?\b(?:to|into|in|at|on|with)\s+)(?:the |my |your )?[\w' .]+$", plain, re.IGNORECASE)
+    if way is not None:
+        return way.group(1) + value
+    verb = re.match(r"^(\w+)\s", plain)
+    return f"{verb.group(1)} {value}" if verb is not None else value
