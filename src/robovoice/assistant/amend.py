@@ -18,7 +18,17 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import FILLER, IMPERATIVES, NOT_NAMES, NOT_THAT, TAG, WITHDRAWAL, fragment, words
+from robovoice.assistant.lexicon import (
+    ARTICLES,
+    FILLER,
+    IMPERATIVES,
+    NOT_NAMES,
+    NOT_THAT,
+    TAG,
+    WITHDRAWAL,
+    fragment,
+    words,
+)
 from robovoice.assistant.reading import Clause, ClauseKind
 
 _MARK = re.compile(r"^(?:sorry|pardon(?: me)?|i mean[t]?|or rather|rather|correction|make (?:that|it))\b[\s,:;.-]*",
@@ -26,7 +36,6 @@ _MARK = re.compile(r"^(?:sorry|pardon(?: me)?|i mean[t]?|or rather|rather|correc
 # what follows "I mean" and is no place or person: "…, I mean it", "…, sorry love"
 _NOT_A_VALUE = re.compile(r"^(?:it|that|this|so|well|business|what i say|honestly|really|again|everyone|folks|all"
                           r"|about (?:that|this)|my (?:mistake|fault|bad|error)|wrong one)$", re.IGNORECASE)
-_ARTICLES = frozenset({"the", "a", "my", "your", "to"})
 _ON_WORDS = r"\b(?:and|then|next|after|afterwards|also|too|plus|as well)\b"  # "…, then the bedroom": one more step
 _GOES_ON = re.compile(_ON_WORDS, re.IGNORECASE)
 
@@ -66,7 +75,7 @@ def last_request(clauses: list[Clause]) -> int | None:
 
 def repeats(said: str, request: str) -> bool:
     """Whether `said` only says again what `request` names ("the hallway, I meant the hallway")."""
-    return set(words(FILLER.sub("", said))) - _ARTICLES <= set(words(request))
+    return set(words(FILLER.sub("", said))) - ARTICLES <= set(words(request))
 
 
 def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[list[Clause] | None, bool]:
@@ -86,7 +95,6 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
         # "turn the projector on, I mean off": a state names no thing; the request it puts right does
         part = re.sub(r"\b(?:on|off)\b", state[1].lower(), clauses[last].text, flags=re.IGNORECASE)
     return [*fixed, Clause(part, ClauseKind.REQUEST)], False
-
 
 
 # somebody who did something ("Ben phoned, then Clara. Off you go."): news, not a place

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.amend import amend, go_list, named_back
+from robovoice.assistant.amend import amend, go_list, named_back, repeats
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
     ARRIVED,
@@ -44,6 +44,7 @@ from robovoice.assistant.hypothetical import (
     conditional,
 )
 from robovoice.assistant.lexicon import (
+    ARTICLES,
     ASKING_VERBS,
     FAREWELL,
     FILLER,
@@ -231,7 +232,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         elif there := ONCE_THERE.match(bare):
             # "once you're in the bedroom, get Dr Weber on a video call": going there is the
             # first step, unless a request said before goes there already
-            place = set(words(there.group(1))) - _ARTICLES
+            place = set(words(there.group(1))) - ARTICLES
             if any(c.kind is ClauseKind.REQUEST and place <= set(words(c.text)) for c in clauses):
                 clauses.append(Clause(part, ClauseKind.STATEMENT))
                 continue
@@ -270,7 +271,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
         if kind is ClauseKind.REQUEST and _JUST.match(part.strip()) and fragment(part) and any(
-                c.kind is kind and set(words(bare)) - _ARTICLES <= set(words(c.text)) for c in clauses):
+                c.kind is kind and repeats(bare, c.text) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, forget about the projector, just the bedroom": asked already
         if kind is ClauseKind.REQUEST and _BACK_TO_SOMEONE.match(part) and not _NAME.search(part) and any(
                 c.kind is kind and (RELATIONS & set(words(c.text)) or _NAME.search(c.text)) for c in clauses):
@@ -334,7 +335,6 @@ _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |your )?\w+(?: \w+)?"
                                r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
-_ARTICLES = frozenset({"the", "a", "my", "your", "to"})
 _AFTER = re.compile(r"^after(?:wards| that| this)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": no request
 _LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
                          r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)

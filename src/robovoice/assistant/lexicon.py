@@ -71,6 +71,8 @@ RELATIONS = frozenset({"son", "daughter", "neighbour", "neighbor", "gp", "sister
                        "mother", "dad", "father", "wife", "husband", "grandson", "granddaughter", "friend", "carer",
                        "nurse", "niece", "nephew", "aunt", "auntie", "uncle", "cousin"})
 
+# the little words before a place or a person ("the kitchen", "to my son"): no part of what is named
+ARTICLES = frozenset({"the", "a", "my", "your", "to"})
 NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
 
 _IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",

@@ -128,7 +128,7 @@ class Assistant:
         if answered is not None:  # "Yes, please." to "Shall I call Anna?": no model step
             return await self._answer_held(ChatMessage("user", user).text, *answered, metrics, emit)
         messages, intent = self._opening(user)
-        asked = intent.steps if intent is not None else ()
+        asked, worded = (intent.steps, intent.worded_steps) if intent is not None else ((), ())  # worded: for hints
         lookups = intent.lookups if intent is not None else ()
         # things asked the turn moved past without a call that ran: a look-up of a compound request
         # the model answered in words, a step whose refused call the model made again
@@ -159,7 +159,7 @@ class Assistant:
         only: list[str] = []  # a request only looked up, asked again: the actions it names, alone
 
         def next_step() -> ChatMessage:  # the hint for the next thing asked (docs/llm.md)
-            due, worded = done(stepped, passed), intent.worded_steps if intent is not None else asked
+            due = done(stepped, passed)
             return ChatMessage("user", step_hint(worded[due], lookups[due], first=False))
 
         for step in range(max_steps):
