@@ -81,6 +81,8 @@ def repeats(said: str, request: str) -> bool:
 def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[list[Clause] | None, bool]:
     """The clauses with `part` read as a correction (None: it is none), and whether the next
     clause may be one (after a bare "sorry"). `pending`: the clause before was a bare one."""
+    if (wanted := instead(clauses, part)) is not None:
+        return wanted, False
     last, rest = last_request(clauses), marker_rest(part, text)
     if last is None:
         return None, False
@@ -95,6 +97,27 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
         # "turn the projector on, I mean off": a state names no thing; the request it puts right does
         part = re.sub(r"\b(?:on|off)\b", state[1].lower(), clauses[last].text, flags=re.IGNORECASE)
     return [*fixed, Clause(part, ClauseKind.REQUEST)], False
+
+
+# "…, the bedroom instead", "…, just the bedroom"; after a bare "not the bathroom", "…, the bedroom"
+_INSTEAD = re.compile(r"\b(?:just|only) (?:the|my|your|to) \w|\b(?:instead|rather)$", re.IGNORECASE)
+_NAMES_ONE = re.compile(r"\b(?:the|my|your) \w|(?<=\w )[A-Z][a-z]+")
+
+
+def instead(clauses: list[Clause], part: str) -> list[Clause] | None:
+    """The clauses with `part` as the request it is when it names, without a verb, what is
+    wanted in place of what was just declined ("Don't bother with the bathroom, just the
+    bedroom.", "Not the kitchen, the hallway."), or None."""
+    said = FILLER.sub("", part.strip()).strip(" .,!?")
+    before = next((c for c in reversed(clauses) if FILLER.sub("", c.text.strip()).strip()), None)
+    if before is None or before.kind is not ClauseKind.NEGATED or not said or not fragment(part) \
+            or not _NAMES_ONE.search(before.text) or WITHDRAWAL.match(said) or TAG.match(said) \
+            or any(c.kind is ClauseKind.REQUEST and repeats(said, c.text) for c in clauses):
+        return None  # (not what was asked already: "go to the lounge, not the bedroom, mind, the lounge")
+    if _INSTEAD.search(part.strip(" .,!?")) or (re.match(r"^not\b", before.text.strip(), re.IGNORECASE)
+                                 and re.match(r"^(?:the|my|your) \w", said, re.IGNORECASE)):
+        return [*clauses, Clause(part, ClauseKind.REQUEST)]
+    return None
 
 
 # somebody who did something ("Ben phoned, then Clara. Off you go."): news, not a place

@@ -24,8 +24,10 @@ _CAN_GENERIC = re.compile(
     r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|video calls|calls|projectors)\b",
     re.IGNORECASE,
 )
-# … unless it names whom or where: "could you make a video call to Ben?" asks for one now.
+# … unless it names whom or where: "could you make a video call to Ben?", "could you take a
+# look in the kitchen?" ask for one now.
 _NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)"
+                    r"|\b(?:look|peek|peep|gander|glance) (?:at|in|into|round|around) (?:the|my) \w+"
                     r"|\bgive (?:(?:the|my|our) \w+|Dr\.? [A-Z]\w*|[A-Z][a-z]+) an? \w+")  # "give Clara a bell"
 # … or a bare plural with no article or owner before it ("can you send text messages?",
 # "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
@@ -72,7 +74,7 @@ EVENT_FIRST = re.compile(r"^(?:once|as soon as) (?!(?:you|ye|again|more|upon|tha
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) (?:ready|free)|you (?:don'?t|do not|wouldn'?t) mind|"
-    r"you (?:can|could|would|please|like|want)\b|"
+    r"you (?:can|could|would|might|will|please|like|want)\b|"
     r"you(?:'ve| have| get| got)? (?:a|the) (?:moment|minute|second|sec|chance)|"
     r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
     re.IGNORECASE)

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.addressee import set_aside
 from robovoice.assistant.amend import amend, go_list, named_back, repeats
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
@@ -99,10 +100,11 @@ _POLITE = re.compile(
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
     r"^i(?:'m| am| was)? wonder(?:ing|ed)? (?:if|whether) you\b|^do you think you could\b|^if you (?:could|would)\b|"
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
-    r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b",
-    re.IGNORECASE,
-)
-
+    r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
+    # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
+    r"^might you\b|^(?:may|might|can|could) i (?:ask|trouble|bother) you (?:to|for)\b|^(?:perhaps|maybe) you might\b"
+    r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right)"
+    r"(?: (?:for you )?to| if you)\b", re.IGNORECASE)
 
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
@@ -165,7 +167,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
     amending = False  # right after a bare "sorry" or "I mean" (amend)
-    text = plain(text)  # "pleeease", "can u": the words as said
+    text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
     for part in _arrival_first(split_clauses(text)):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if clauses and _tag_asks(clauses[-1], part):  # "would you ever …, please?"; "Bedroom, please."
@@ -322,7 +324,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                    and (asked or asked_as_question(c.text)) else c for c in clauses]
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
-    return Intent(tuple(go_list(clauses, text)), answering)
+    return Intent((*go_list(clauses, text), *(Clause(said, ClauseKind.STATEMENT) for said in to_others)), answering)
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)

@@ -179,9 +179,16 @@ _TEXTED_WORD = re.compile(r"\b(" + "|".join(_TEXTED) + r")\b", re.IGNORECASE)
 _STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
 
 
+# A checklist's numbers ("Number one, projector on. Item two: the bedroom.") are its order words.
+_NUMBERED = re.compile(r"(?:(?<=^)|(?<=[.!?;:,]\s))(?:number|item|step|point|task|job) (one|two|three|four|five)"
+                       r"\s*[:,.)-]?\s*", re.IGNORECASE)
+
+
 def plain(text: str) -> str:
-    """`text` with texting shorthand spelled out and stretched letters said once."""
+    """`text` with texting shorthand spelled out, stretched letters said once and a checklist's
+    numbers said as order words ("first", "then")."""
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _STRETCHED.sub(r"\1", text))
+    text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 

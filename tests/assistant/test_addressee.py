@@ -1,0 +1,96 @@
+"""Sentences said to someone else in the room (assistant/addressee.py), polite forms, a
+checklist's numbers and "…, the bedroom instead" (intent, lexicon.plain, amend.instead)."""
+
+from __future__ import annotations
+
+import pytest
+
+from robovoice.assistant.addressee import set_aside
+from robovoice.assistant.intent import read_request
+from robovoice.assistant.reading import ClauseKind
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Robot, ring Clara. Ben, don't you touch that.", ("ring Clara",)),  # not a second call, to Ben
+    ("No, Ben, not you. Robot, go to the bedroom.", ("go to the bedroom",)),
+    ("Jarvis, put the projector on. No, Ben, not you, I was talking to the robot.", ("put the projector on",)),
+    ("Mum, can you ring Ben? Robot, go to the kitchen.", ("go to the kitchen",)),
+    ("Gran, go and sit down. Switch the projector on, please.", ("Switch the projector on",)),
+])
+def test_a_sentence_said_to_someone_else_asks_the_robot_nothing(text: str, steps: tuple[str, ...]) -> None:
+    intent = read_request(text)
+    assert intent.steps == steps
+    assert any(c.kind is ClauseKind.STATEMENT and c.text.endswith((".", "?")) for c in intent.clauses)
+
+
+@pytest.mark.parametrize("text", [
+    "No, Clara, I'll call you later.",
+    "Ben, you ought to ring your sister Anna tonight.",
+    "Dad, could you switch the projector off when you go up?",
+])
+def test_said_only_to_someone_else_nothing_is_asked(text: str) -> None:
+    assert not read_request(text).asks_action
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Anna, please.", ("Anna",)),  # an answer to "Whom shall I call?"
+    ("Anna, then Ben.", None),  # a list of whom, not an address
+    ("Kitchen, go on then.", ("go on then",)),  # a place first is no name
+    ("Och, forget the bedroom, take me to the kitchen.", ("take me to the kitchen",)),  # an exclamation
+    ("Hey Travis, go to the kitchen, please.", ("go to the kitchen",)),  # the wake word misheard
+    ("Ben, stop that!", ("stop that",)),  # a spoken stop is always for the robot
+    ("Ring Dr. Weber. Thanks.", ("Ring Dr. Weber",)),  # a title's full stop ends no sentence
+])
+def test_what_still_reads_as_said_to_the_robot(text: str, steps: tuple[str, ...] | None) -> None:
+    if steps is not None:
+        assert read_request(text).steps == steps
+    assert set_aside(text)[1] == ()
+
+
+@pytest.mark.parametrize("text", [
+    "Might you go to the kitchen for me?",
+    "May I ask you to call Ben?",
+    "Would it be too much trouble to switch the projector on?",
+    "Would it be terribly inconvenient for you to ring my daughter?",
+    "Perhaps you might ring Clara for me.",
+    "I'd be ever so grateful if you might consider taking yourself off to the hallway.",
+    "Could you take a gander at the bathroom for me?",
+])
+def test_the_most_formal_requests_ask(text: str) -> None:
+    assert [c.kind for c in read_request(text).clauses] == [ClauseKind.REQUEST]
+
+
+@pytest.mark.parametrize("text", [
+    "Perhaps you might have left it in the kitchen.",
+    "Can you make video calls?",
+    "Can you look at things far away?",
+])
+def test_what_stays_talk_or_a_question_about_ability(text: str) -> None:
+    assert not read_request(text).asks_action
+
+
+def test_a_checklists_numbers_are_its_order() -> None:
+    assert read_request("Item one: the bedroom. Item two: the projector off.").steps == \
+        ("first the bedroom", "the projector off")
+    assert read_request("Number one, projector on. Number two, call Ben.").steps == ("first projector on", "call Ben")
+    assert read_request("Call number one.").steps == ("Call number one",)
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Don't bother with the bathroom, just the bedroom.", ("just the bedroom",)),
+    ("Not the bathroom, the bedroom.", ("the bedroom",)),
+    ("Don't go to the bathroom, the bedroom instead.", ("the bedroom instead",)),
+])
+def test_what_is_wanted_instead_of_what_was_declined(text: str, steps: tuple[str, ...]) -> None:
+    intent = read_request(text)
+    assert intent.steps == steps
+    assert intent.clauses[0].kind is ClauseKind.NEGATED
+
+
+@pytest.mark.parametrize("text", [
+    "Don't go to the bathroom, the floor is wet.",
+    "Don't ring Anna, she is busy.",
+    "Not the bathroom, thanks.",
+])
+def test_a_reason_after_a_no_is_no_request(text: str) -> None:
+    assert not read_request(text).asks_action
