@@ -94,3 +94,21 @@ def test_what_is_wanted_instead_of_what_was_declined(text: str, steps: tuple[str
 ])
 def test_a_reason_after_a_no_is_no_request(text: str) -> None:
     assert not read_request(text).asks_action
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # with the robot called by name in another sentence, a name anywhere says whom a sentence is for
+    ("Tom, pop the kettle on, would you? And you, robot, off you go to the front door.",
+     ("off you go to the front door",)),
+    ("Sit yourself down, Margaret, I'll sort it. Robot, ring Clara.", ("ring Clara",)),
+    ("Robot, go to the kitchen. Then ring my son, Ben.", ("go to the kitchen", "ring my son Ben")),  # who he is
+    ("Robot, call Anna. Ben, stop that.", ("call Anna", "stop that")),  # not a call to Ben
+    ("Hypothetically, can you call Ben?", ()),  # an adverb is no name
+])
+def test_a_name_beside_the_robots_name_says_whom_a_sentence_is_for(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+def test_a_lists_heading_said_as_a_sentence_is_no_step() -> None:
+    assert read_request("Two things. Projector on, then video call Dr. Weber.").steps == \
+        ("Projector on", "video call Dr. Weber")

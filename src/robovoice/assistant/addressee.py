@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import FILLER, IMPERATIVES, QUESTION_WORDS, TAG, fragment
+from robovoice.assistant.lexicon import FILLER, IMPERATIVES, QUESTION_WORDS, RELATIONS, TAG, fragment
 
 # Sentences; not at a title's full stop ("Dr. Weber").
 _SENTENCE = re.compile(r"(?<!\bDr\.)(?<!\bMr\.)(?<!\bMrs\.)(?<!\bMs\.)(?<!\bSt\.)(?<=[.!?])\s+")
@@ -42,34 +42,75 @@ _NOT_A_PERSON = frozenset({
     "guys",
 })
 # What follows a name that is still said to the robot: a list of whom ("Anna, then Ben"), a plea.
-_STILL_ASKING = re.compile(r"^(?:then|and|too|as well|please|now|first|next|after)\b", re.IGNORECASE)
+_STILL_ASKING = re.compile(r"^(?:then|and|too|as well|please|now|first|next|after|i mean|i meant)\b", re.IGNORECASE)
 # What is said to the person named ("not you", "don't you touch that", "I'll call you back"):
 # enough to tell a name from an exclamation the robot does not know.
 _TO_THEM = re.compile(r"^(?:(?:not|don'?t|do not) )?you\b|^i(?:'m|'ll|'ve| am| will| was| have)\b", re.IGNORECASE)
 
 
-def _said_to_someone(sentence: str) -> bool:
+# The robot called by name ("Robot, …", "And you, robot, …", "…, Jarvis."), not in the wake phrase
+# ("Hey Jarvis, …"): a person who turns to the robot this way was talking to someone else before.
+_ROBOT_CALLED = re.compile(r"(?<!hey )(?<!hi )(?<!ok )(?<!okay )\b(?:robot|jarvis)\b\s*(?:[,.!?]|$)", re.IGNORECASE)
+# A name set off by commas inside or at the end of a sentence: "Sit yourself down, Margaret, …"
+_NAME_INSIDE = re.compile(r"(?<=\w),\s+([A-Z][a-z]+)\s*(?:,|[.!?]*$)")
+# … but not one that says who a relation is: "ring my son, Ben"
+_APPOSITION = re.compile(r"\b(?:" + "|".join(sorted(RELATIONS | {"doctor", "gp", "contact"})) + r"),$", re.IGNORECASE)
+
+
+def _a_person(name: str) -> bool:
+    """`name` (said first, or set off by commas) may name a person: capitalised or a family word,
+    and no greeting, exclamation, adverb ("Hypothetically, …"), order word or the robot's name."""
+    last = name.split()[-1].lower()
+    if not (name[0].isupper() or last in _FAMILY) or last.endswith("ly"):
+        return False
+    return not (last in _NOT_A_PERSON or last in IMPERATIVES or last in QUESTION_WORDS or TAG.match(last)
+                or FILLER.fullmatch(f"{name},"))
+
+
+def _said_to_someone(sentence: str, robot_called: bool) -> bool:
+    """Whether `sentence` is said to someone else; `robot_called`: another sentence calls the
+    robot by name, so a name anywhere in this one says whom it is for ("Tom, pop the kettle on"),
+    not only a family word or "you" after it."""
+    if robot_called and not _ROBOT_CALLED.search(sentence) and not re.search(r"\bstop\b", sentence, re.IGNORECASE):
+        for inside in _NAME_INSIDE.finditer(sentence):
+            if _a_person(inside.group(1)) and not _APPOSITION.search(sentence[:inside.start() + 1]):
+                return True
     called = _CALLED.match(sentence.strip())
-    if called is None:
+    if called is None or not _a_person(called.group("name")):
         return False
     name = called.group("name")
     last = name.split()[-1].lower()
-    if last in _NOT_A_PERSON or last in IMPERATIVES or last in QUESTION_WORDS or FILLER.fullmatch(f"{name},") \
-            or TAG.match(last):
-        return False
     rest = called.group("rest").strip()
     first = re.split(r"[,;:.!?]", rest, maxsplit=1)[0].strip()
     if not first or _STILL_ASKING.match(first) or re.search(r"\bstop\b", rest, re.IGNORECASE):
         return False  # (a spoken stop is always for the robot: it may be what keeps someone safe)
     if _TO_THEM.match(first):
         return name[0].isupper() or last in _FAMILY
-    return last in _FAMILY and (first.split()[0].lower() in IMPERATIVES or not fragment(first))
+    return (last in _FAMILY or (robot_called and name[0].isupper())) and (
+        first.split()[0].lower() in IMPERATIVES or not fragment(first))
 
 
 def set_aside(text: str) -> tuple[str, tuple[str, ...]]:
     """`text` without the sentences said to someone else, and those sentences."""
+    sentences = _SENTENCE.split(text.strip())
+    robot_called = any(_ROBOT_CALLED.search(s) for s in sentences)
     kept: list[str] = []
     aside: list[str] = []
-    for sentence in _SENTENCE.split(text.strip()):
-        (aside if _said_to_someone(sentence) else kept).append(sentence)
+    for sentence in sentences:
+        if _said_to_someone(sentence, robot_called):
+            aside.append(sentence)
+        else:
+            kept.append(_without_name(sentence) if kept else sentence)
     return " ".join(kept), tuple(aside)
+
+
+def _without_name(sentence: str) -> str:
+    """`sentence` without a person's name it opens with, when a clause of its own follows: said
+    after a request, "Ben, stop that!" is a stop, not one more call (to Ben) and a stop."""
+    called = _CALLED.match(sentence.strip())
+    if called is None or not _a_person(called.group("name")):
+        return sentence
+    first = re.split(r"[,;:.!?]", called.group("rest"), maxsplit=1)[0].strip()
+    if _STILL_ASKING.match(first) or (fragment(first) and first.split()[0].lower() not in IMPERATIVES):
+        return sentence
+    return called.group("before") + called.group("rest")

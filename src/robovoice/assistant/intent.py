@@ -54,6 +54,7 @@ from robovoice.assistant.lexicon import (
     IN_ORDER,
     LATER,
     LATER_ONLY,
+    LIST_INTRO,
     NOT_A_VERB,
     OWN_PLAN,
     QUESTION_WORDS,
@@ -197,7 +198,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if VAGUE.match(bare) and clauses:  # "…, turn the projector on and stuff": no step
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
-        if _LIST_INTRO.match(bare):  # "three little jobs for you: the hallway, then …": each is asked
+        if LIST_INTRO.match(bare):  # "three little jobs for you: the hallway, then …": each is asked
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             corrected = True
             continue
@@ -338,8 +339,6 @@ _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |yo
                                r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 _AFTER = re.compile(r"^after(?:wards| that| this)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": no request
-_LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
-                         r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
 _THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."
@@ -362,7 +361,7 @@ def _tag_asks(before: Clause, tag: str) -> bool:
     if before.kind is ClauseKind.ABILITY:
         return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
     return before.kind is ClauseKind.STATEMENT and fragment(before.text) and "please" in tag.lower() \
-        and not _LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
+        and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
 
 
 def _arrival_first(parts: list[str]) -> list[str]:

@@ -192,6 +192,10 @@ def plain(text: str) -> str:
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 
+# A list's heading: "three little jobs for you: the hallway, then …", "Two things. …" (each is asked).
+LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
+                         r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
+
 # Vague words that end a list of requests ("…, and turn the projector on and stuff"): no step
 VAGUE = re.compile(r"^(?:stuff|things|everything|whatever|all that|and so on|so on|that sort of thing|etc)$",
                    re.IGNORECASE)
