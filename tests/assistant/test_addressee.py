@@ -104,6 +104,7 @@ def test_a_reason_after_a_no_is_no_request(text: str) -> None:
     ("Robot, go to the kitchen. Then ring my son, Ben.", ("go to the kitchen", "ring my son Ben")),  # who he is
     ("Robot, call Anna. Ben, stop that.", ("call Anna", "stop that")),  # not a call to Ben
     ("Hypothetically, can you call Ben?", ()),  # an adverb is no name
+    ("Harry, switch the telly off, would you? Robot, you ring Anna.", ("ring Anna",)),  # "you" after its name
 ])
 def test_a_name_beside_the_robots_name_says_whom_a_sentence_is_for(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps

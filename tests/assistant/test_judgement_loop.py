@@ -377,3 +377,22 @@ async def test_a_look_up_on_the_way_to_an_action_does_not_do_it() -> None:
         [call("get_battery_state"), call("navigate_to", target="hallway")], "Check your battery and go to the hallway.")
     assert [c.name for c in result.calls] == ["get_battery_state", "navigate_to"]
     assert server.requests[1].last_user_text == "Now do the next thing I asked: go to the hallway."
+
+
+async def test_a_claim_with_no_call_at_all_is_asked_for_once_more() -> None:
+    """Dev checklist-1 and heading-2: "Three jobs. Kitchen first, then ring Ben." got "I am now at
+    the kitchen." and no call at all. Words that claim an action the model never called ask for
+    the first thing asked once more, offered only the actions it names; words that claim nothing
+    ("I'll wait there.") stay the model's own answer."""
+    result, server = await scripted_turn(
+        [TextReply("I am now at the kitchen."), call("navigate_to", target="kitchen"),
+         call("start_video_call", contact="Ben"), TextReply("Calling Ben.")],
+        "Three jobs. Kitchen first, then ring Ben.")
+    assert [c.name for c in result.calls] == ["navigate_to", "start_video_call"]
+    assert server.requests[1].tool_names == ["navigate_to"]  # offered alone
+    result, server = await scripted_turn([TextReply("I'll wait there.")], "Three jobs. Kitchen first, then ring Ben.")
+    assert not result.calls and len(server.requests) == 1
+    result, server = await scripted_turn(
+        [TextReply("I am now at the kitchen."), TextReply("I am in the kitchen now.")],
+        "Three jobs. Kitchen first, then ring Ben.")
+    assert not result.calls and len(server.requests) == 2  # once only

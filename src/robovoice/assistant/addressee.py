@@ -90,9 +90,16 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
         first.split()[0].lower() in IMPERATIVES or not fragment(first))
 
 
+# "Robot, you ring Anna": after the robot's name, a "you" before a request names who is to do it
+# (not in the wake phrase, nor before a verb that also tells how the robot is: "you look tired")
+_YOU_DO = re.compile(r"(?<!hey )(?<!hi )\b((?:robot|jarvis),?\s+)you\s+(?=(?:go|drive|head|come|ring|call|phone|dial|"
+                     r"video|switch|turn|put|return|cancel|end|hang|pop|nip)\b)", re.IGNORECASE)
+
+
 def set_aside(text: str) -> tuple[str, tuple[str, ...]]:
-    """`text` without the sentences said to someone else, and those sentences."""
-    sentences = _SENTENCE.split(text.strip())
+    """`text` without the sentences said to someone else, and those sentences; a request said
+    to the robot by name with "you" ("Robot, you ring Anna") as the request it is."""
+    sentences = _SENTENCE.split(_YOU_DO.sub(r"\1", text.strip()))
     robot_called = any(_ROBOT_CALLED.search(s) for s in sentences)
     kept: list[str] = []
     aside: list[str] = []

@@ -38,13 +38,7 @@ from robovoice.assistant.prompt import GUESSED_HINT, SYSTEM_PROMPT, step_hint
 from robovoice.assistant.reading import Intent
 from robovoice.assistant.robot_tools import Toolbox, ToolOutcome
 from robovoice.assistant.speech_guard import MODEL_ONLY, TurnActions
-from robovoice.assistant.turn_rules import (
-    asked_left,
-    call_key,
-    done,
-    offered,
-    wordless_reply,
-)
+from robovoice.assistant.turn_rules import asked_left, call_key, done, offered, wordless_reply
 from robovoice.errors import LLMError
 from robovoice.llm.base import ChatMessage, ContentPart, LLMBackend, ToolCallRequested, ToolSpec
 from robovoice.llm.failover import FALLBACK_MESSAGE
@@ -231,6 +225,11 @@ class Assistant:
                 if asked_left(asked, stepped, passed):
                     messages.append(next_step())
                     continue
+            if not requested and not (calls or nudged) and text and step < max_steps - 2 and (
+                    left := turn_rules.claimed_unacted(asked, lookups, tools, text)) is not None:
+                nudged, only = True, left[1]  # "I am now at the kitchen." with no call: asked once more
+                messages.append(ChatMessage("user", step_hint(left[0], False, first=False)))
+                continue
             if not requested:
                 break
             ran: list[tuple[ToolCalled, ToolReturned]] = []

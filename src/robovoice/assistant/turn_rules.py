@@ -13,6 +13,7 @@ from robovoice.assistant.gate import NOT_REQUESTED, said_after
 from robovoice.assistant.hypothetical import asked_as_question, asks_ever
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.reading import ClauseKind
+from robovoice.assistant.speech_guard import claimed_action_in
 from robovoice.llm.base import ChatMessage, ToolCallRequested, ToolSpec
 
 
@@ -75,6 +76,19 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
         if not lookup and (acts := naming(step, specs)):
             return step, acts
     return None
+
+
+def claimed_unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolSpec],
+                    text: str) -> tuple[str, list[str]] | None:
+    """The model called nothing and answered in words that claim an action ("I am now at the
+    kitchen." for "Three jobs. Kitchen first, then ring Ben."): the first thing asked that names
+    a value an action lists, and those actions, as `unacted` gives them; it is asked for once
+    more, offered only those, and the check before acting still decides. None when the words
+    claim nothing: a refusal in words is the model's own second check, and is kept."""
+    if claimed_action_in(text) is None:
+        return None
+    return next(((step, acts) for step, lookup in zip(asked, lookups, strict=True)
+                 if not lookup and (acts := naming(step, specs))), None)
 
 
 def naming(step: str, specs: Sequence[ToolSpec]) -> list[str]:
