@@ -43,6 +43,7 @@ _NOT_A_PERSON = frozenset({
 })
 # What follows a name that is still said to the robot: a list of whom ("Anna, then Ben"), a plea.
 _STILL_ASKING = re.compile(r"^(?:then|and|too|as well|please|now|first|next|after|i mean|i meant)\b", re.IGNORECASE)
+_STOP = re.compile(r"\bstop\b", re.IGNORECASE)  # a spoken stop is always for the robot
 # What is said to the person named ("not you", "don't you touch that", "I'll call you back"):
 # enough to tell a name from an exclamation the robot does not know.
 _TO_THEM = re.compile(r"^(?:(?:not|don'?t|do not) )?you\b|^i(?:'m|'ll|'ve| am| will| was| have)\b", re.IGNORECASE)
@@ -71,7 +72,7 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
     """Whether `sentence` is said to someone else; `robot_called`: another sentence calls the
     robot by name, so a name anywhere in this one says whom it is for ("Tom, pop the kettle on"),
     not only a family word or "you" after it."""
-    if robot_called and not _ROBOT_CALLED.search(sentence) and not re.search(r"\bstop\b", sentence, re.IGNORECASE):
+    if robot_called and not _ROBOT_CALLED.search(sentence) and not _STOP.search(sentence):
         for inside in _NAME_INSIDE.finditer(sentence):
             if _a_person(inside.group(1)) and not _APPOSITION.search(sentence[:inside.start() + 1]):
                 return True
@@ -82,7 +83,7 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
     last = name.split()[-1].lower()
     rest = called.group("rest").strip()
     first = re.split(r"[,;:.!?]", rest, maxsplit=1)[0].strip()
-    if not first or _STILL_ASKING.match(first) or re.search(r"\bstop\b", rest, re.IGNORECASE):
+    if not first or _STILL_ASKING.match(first) or _STOP.search(rest):
         return False  # (a spoken stop is always for the robot: it may be what keeps someone safe)
     if _TO_THEM.match(first):
         return name[0].isupper() or last in _FAMILY
