@@ -1,5 +1,6 @@
 """Sentences said to someone else in the room (assistant/addressee.py), polite forms, a
-checklist's numbers and "…, the bedroom instead" (intent, lexicon.plain, amend.instead)."""
+checklist's numbers, "…, the bedroom instead", and a stop or a want said of someone else
+(intent, lexicon.plain, amend.instead)."""
 
 from __future__ import annotations
 
@@ -113,3 +114,25 @@ def test_a_name_beside_the_robots_name_says_whom_a_sentence_is_for(text: str, st
 def test_a_lists_heading_said_as_a_sentence_is_no_step() -> None:
     assert read_request("Two things. Projector on, then video call Dr. Weber.").steps == \
         ("Projector on", "video call Dr. Weber")
+
+
+@pytest.mark.parametrize("text", [
+    "Oh, this cold is driving me mad, I can't stop sneezing.",  # a stop said of something else
+    "My knees won't stop aching today.",
+    "Don't hang up yet, I want Anna to see the garden.",  # what someone else is to do
+    "I need Clara to know the hallway light is broken.",
+])
+def test_a_stop_or_a_want_about_someone_else_asks_nothing(text: str) -> None:
+    assert not read_request(text).asks_action
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Why won't you stop?", ("Why won't you stop",)),
+    ("I want you to go to the kitchen.", ("I want you to go to the kitchen",)),
+    ("I want to call Ben.", ("I want to call Ben",)),
+    # a stop is never taken back: "cancel that" after one cancels the drive
+    ("Stop, stop! Cancel that and go back to your charger instead.",
+     ("Stop", "Cancel that", "go back to your charger instead")),
+])
+def test_what_still_asks(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -94,7 +94,9 @@ _POLITE = re.compile(
     # you'd better ring Clara"; not "you should have seen it", "you must be tired")
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
     r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
-    r"^i(?:'d| would) like (?:you|to|the|my|a|an|some|it)\b|^i (?:want|need|wish)\b|^i(?:'d| would) love\b|"
+    r"^i(?:'d| would) like (?:you|to|the|my|a|an|some|it)\b|^i(?:'d| would) love\b|"
+    # (not what someone else is to do: "I want Anna to see the garden", text test v34)
+    r"^i (?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b|to\b)\w+) to \w)|"
     r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
     r"^(?:all|what|the one thing) i(?:'d| would)? (?:really )?(?:want|need|like) (?:from you )?is\b|"
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
@@ -127,7 +129,8 @@ def classify(clause: str) -> ClauseKind:
     lowered = text.lower()
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
-    if _STOP.search(lowered) and not re.search(r"\b(?:don'?t|do not|never|no need to|needn'?t|not) stop\b", lowered):
+    if _STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
+                                               r"(?:can'?t|cannot|couldn'?t|won'?t)) stop\b", lowered):
         return ClauseKind.REQUEST  # a stop is always a request
     if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
         return ClauseKind.REQUEST
@@ -304,13 +307,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and i < start else c
                        for i, c in enumerate(clauses)]
         undone = undone if not bare or aside else []  # "no, hang on, not the kitchen": the "no" still holds
-        asked_before = any(c.kind is ClauseKind.REQUEST for c in clauses)
+        asked_before = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and not _STOP.search(c.text)]
         if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or asked_before):
-            # "switch the projector on… actually, no, don't" / "…, scratch that": the requests said before are withdrawn
-            kind = ClauseKind.NEGATED
-            undone = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST]
-            corrected = bool(undone)
-            clauses = [Clause(c.text, ClauseKind.NEGATED) if c.kind is ClauseKind.REQUEST else c for c in clauses]
+            # "switch the projector on… actually, no, don't" / "…, scratch that": the requests said before are
+            # withdrawn; never a stop ("Stop, stop! Cancel that and …" cancels the drive: text test v34)
+            kind, undone, corrected = ClauseKind.NEGATED, asked_before, bool(asked_before)
+            clauses = [Clause(c.text, ClauseKind.NEGATED) if i in undone else c for i, c in enumerate(clauses)]
         if front is not None and kind in (ClauseKind.REQUEST, ClauseKind.QUESTION):
             clauses.insert(front, Clause(part, kind))
             front = None
