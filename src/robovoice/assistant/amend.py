@@ -115,8 +115,8 @@ def instead(clauses: list[Clause], part: str) -> list[Clause] | None:
             or not _NAMES_ONE.search(before.text) or WITHDRAWAL.match(said) or TAG.match(said) \
             or any(c.kind is ClauseKind.REQUEST and repeats(said, c.text) for c in clauses):
         return None  # (not what was asked already: "go to the lounge, not the bedroom, mind, the lounge")
-    if _INSTEAD.search(part.strip(" .,!?")) or (re.match(r"^not\b", before.text.strip(), re.IGNORECASE)
-                                 and re.match(r"^(?:the|my|your) \w", said, re.IGNORECASE)):
+    after_not = re.match(r"^not\b", before.text.strip(), re.IGNORECASE) is not None
+    if _INSTEAD.search(part.strip(" .,!?")) or (after_not and re.match(r"^(?:the|my|your) \w", said, re.IGNORECASE)):
         return [*clauses, Clause(part, ClauseKind.REQUEST)]
     return None
 

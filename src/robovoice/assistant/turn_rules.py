@@ -72,10 +72,14 @@ def unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolS
     for a request, the model's own answer is the second check, and pushing it would act."""
     if not calls or {c.name for c in calls} & {s.name for s in specs if not s.read_only}:
         return None
-    for step, lookup in zip(asked, lookups, strict=True):
-        if not lookup and (acts := naming(step, specs)):
-            return step, acts
-    return None
+    return _first_naming(asked, lookups, specs)
+
+
+def _first_naming(asked: Sequence[str], lookups: Sequence[bool],
+                  specs: Sequence[ToolSpec]) -> tuple[str, list[str]] | None:
+    """The first thing asked, not a look-up, that names a value an action lists, and those actions."""
+    return next(((step, acts) for step, lookup in zip(asked, lookups, strict=True)
+                 if not lookup and (acts := naming(step, specs))), None)
 
 
 def claimed_unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolSpec],
@@ -85,10 +89,7 @@ def claimed_unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequen
     a value an action lists, and those actions, as `unacted` gives them; it is asked for once
     more, offered only those, and the check before acting still decides. None when the words
     claim nothing: a refusal in words is the model's own second check, and is kept."""
-    if claimed_action_in(text) is None:
-        return None
-    return next(((step, acts) for step, lookup in zip(asked, lookups, strict=True)
-                 if not lookup and (acts := naming(step, specs))), None)
+    return _first_naming(asked, lookups, specs) if claimed_action_in(text) is not None else None
 
 
 def naming(step: str, specs: Sequence[ToolSpec]) -> list[str]:
