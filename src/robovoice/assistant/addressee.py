@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import FILLER, IMPERATIVES, QUESTION_WORDS, RELATIONS, TAG, fragment
+from robovoice.assistant.lexicon import FILLER, IMPERATIVES, QUESTION_WORDS, RELATIONS, STOP, TAG, fragment
 
 # Sentences; not at a title's full stop ("Dr. Weber").
 _SENTENCE = re.compile(r"(?<!\bDr\.)(?<!\bMr\.)(?<!\bMrs\.)(?<!\bMs\.)(?<!\bSt\.)(?<=[.!?])\s+")
@@ -43,7 +43,6 @@ _NOT_A_PERSON = frozenset({
 })
 # What follows a name that is still said to the robot: a list of whom ("Anna, then Ben"), a plea.
 _STILL_ASKING = re.compile(r"^(?:then|and|too|as well|please|now|first|next|after|i mean|i meant)\b", re.IGNORECASE)
-_STOP = re.compile(r"\bstop\b", re.IGNORECASE)  # a spoken stop is always for the robot
 # What is said to the person named ("not you", "don't you touch that", "I'll call you back"):
 # enough to tell a name from an exclamation the robot does not know.
 _TO_THEM = re.compile(r"^(?:(?:not|don'?t|do not) )?you\b|^i(?:'m|'ll|'ve| am| will| was| have)\b", re.IGNORECASE)
@@ -68,22 +67,29 @@ def _a_person(name: str) -> bool:
                 or FILLER.fullmatch(f"{name},"))
 
 
+def _opening_name(sentence: str) -> tuple[re.Match[str], str] | None:
+    """The person's name `sentence` opens with (`_CALLED`), and the words up to the next
+    punctuation after it; None when it opens with no name."""
+    called = _CALLED.match(sentence.strip())
+    if called is None or not _a_person(called.group("name")):
+        return None
+    return called, re.split(r"[,;:.!?]", called.group("rest"), maxsplit=1)[0].strip()
+
+
 def _said_to_someone(sentence: str, robot_called: bool) -> bool:
     """Whether `sentence` is said to someone else; `robot_called`: another sentence calls the
     robot by name, so a name anywhere in this one says whom it is for ("Tom, pop the kettle on"),
     not only a family word or "you" after it."""
-    if robot_called and not _ROBOT_CALLED.search(sentence) and not _STOP.search(sentence):
+    if robot_called and not _ROBOT_CALLED.search(sentence) and not STOP.search(sentence):
         for inside in _NAME_INSIDE.finditer(sentence):
             if _a_person(inside.group(1)) and not _APPOSITION.search(sentence[:inside.start() + 1]):
                 return True
-    called = _CALLED.match(sentence.strip())
-    if called is None or not _a_person(called.group("name")):
+    if (opening := _opening_name(sentence)) is None:
         return False
+    called, first = opening
     name = called.group("name")
     last = name.split()[-1].lower()
-    rest = called.group("rest").strip()
-    first = re.split(r"[,;:.!?]", rest, maxsplit=1)[0].strip()
-    if not first or _STILL_ASKING.match(first) or _STOP.search(rest):
+    if not first or _STILL_ASKING.match(first) or STOP.search(called.group("rest")):
         return False  # (a spoken stop is always for the robot: it may be what keeps someone safe)
     if _TO_THEM.match(first):
         return name[0].isupper() or last in _FAMILY
@@ -115,10 +121,9 @@ def set_aside(text: str) -> tuple[str, tuple[str, ...]]:
 def _without_name(sentence: str) -> str:
     """`sentence` without a person's name it opens with, when a clause of its own follows: said
     after a request, "Ben, stop that!" is a stop, not one more call (to Ben) and a stop."""
-    called = _CALLED.match(sentence.strip())
-    if called is None or not _a_person(called.group("name")):
+    if (opening := _opening_name(sentence)) is None:
         return sentence
-    first = re.split(r"[,;:.!?]", called.group("rest"), maxsplit=1)[0].strip()
+    called, first = opening
     if _STILL_ASKING.match(first) or (fragment(first) and first.split()[0].lower() not in IMPERATIVES):
         return sentence
     return called.group("before") + called.group("rest")

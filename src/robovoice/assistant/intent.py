@@ -60,6 +60,7 @@ from robovoice.assistant.lexicon import (
     QUESTION_WORDS,
     RELATIONS,
     RHETORICAL,
+    STOP,
     TAG,
     VAGUE,
     WITHDRAWAL,
@@ -113,7 +114,6 @@ _POLITE = re.compile(
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
 _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$",
                        re.IGNORECASE)
-_STOP = re.compile(r"\bstop\b", re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
 # "have a look in the bathroom": asked of the robot, though "have" opens questions ("have you …?")
@@ -129,7 +129,7 @@ def classify(clause: str) -> ClauseKind:
     lowered = text.lower()
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
-    if _STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
+    if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
                                                r"(?:can'?t|cannot|couldn'?t|won'?t)) stop\b", lowered):
         return ClauseKind.REQUEST  # a stop is always a request
     if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
@@ -307,7 +307,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and i < start else c
                        for i, c in enumerate(clauses)]
         undone = undone if not bare or aside else []  # "no, hang on, not the kitchen": the "no" still holds
-        asked_before = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and not _STOP.search(c.text)]
+        asked_before = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and not STOP.search(c.text)]
         if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or asked_before):
             # "switch the projector on… actually, no, don't" / "…, scratch that": the requests said before are
             # withdrawn; never a stop ("Stop, stop! Cancel that and …" cancels the drive: text test v34)

@@ -46,6 +46,8 @@ IMPERATIVES = frozenset({
     "place", "telephone", "proceed",  # formal: "place a call to …", "proceed to the living room"
     "hit", "dip", "bounce",  # young people's: "hit up Clara", "dip to the hallway"
 })
+# The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
+STOP = re.compile(r"\bstop\b", re.IGNORECASE)
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
 YOU_DO = re.compile(rf"^you (?:{'|'.join(sorted(IMPERATIVES))})\b", re.IGNORECASE)
@@ -194,7 +196,7 @@ def plain(text: str) -> str:
 
 # A list's heading: "three little jobs for you: the hallway, then …", "Two things. …" (each is asked).
 LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
-                         r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
+                        r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
 
 # Vague words that end a list of requests ("…, and turn the projector on and stuff"): no step
 VAGUE = re.compile(r"^(?:stuff|things|everything|whatever|all that|and so on|so on|that sort of thing|etc)$",
