@@ -1,0 +1,111 @@
+"""What kind of clause one clause is, on its own: a request, a negated or postponed one, an
+ability question, a question about the robot's state or a statement. Plain code, no model.
+
+`intent.read_request` reads the clauses of an utterance together (order words, corrections,
+conditions); this is the first look at each one alone.
+"""
+
+from __future__ import annotations
+
+import re
+
+from robovoice.assistant.hypothetical import asks_ability
+from robovoice.assistant.lexicon import (
+    FILLER,
+    IMPERATIVE_SHAPE,
+    IMPERATIVES,
+    IN_ORDER,
+    LATER,
+    NOT_A_VERB,
+    QUESTION_WORDS,
+    RHETORICAL,
+    STOP,
+    YOU_DO,
+    words,
+)
+from robovoice.assistant.reading import ClauseKind
+
+_NEGATION = re.compile(
+    r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
+    r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
+    r"hold off|rather not|rather you didn'?t|no,|gonnae no|"
+    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace|for now|for the moment"
+    r"|for the time being)|^forget (?:about )?(?:the|my|your|going|calling|ringing|phoning)\b|"
+    r"let (?:it|that|them) be|don'?t touch)\b"
+    r"|\bnot\s*$|^not\b"  # "…, not Ben"
+    # "leave it, leave the projector": as it is (not "leave the kitchen": go out of it)
+    r"|^leave (?:the|my|your|that) (?!(?:\w+ )?(?:room|kitchen|hall|hallway|house|flat|lounge|garden)$)\w+(?: \w+)?$",
+    re.IGNORECASE,
+)
+_MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"
+_POLITE = re.compile(
+    r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
+    r"^gonnae\b(?! no\b)|^time to\b|^(?:off|away) you go\b|^go and\b|^(?:could|can|may) we (?:have|get)\b|"
+    # advice to the robot is a request, not a past it missed ("you ought to charge up", "I think
+    # you'd better ring Clara"; not "you should have seen it", "you must be tired")
+    r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
+    r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
+    r"^i(?:'d| would) like (?:you|to|the|my|a|an|some|it)\b|^i(?:'d| would) love\b|"
+    # (not what someone else is to do: "I want Anna to see the garden", text test v34)
+    r"^i (?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b|to\b)\w+) to \w)|"
+    r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
+    r"^(?:all|what|the one thing) i(?:'d| would)? (?:really )?(?:want|need|like) (?:from you )?is\b|"
+    # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
+    r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
+    r"^i(?:'m| am| was)? wonder(?:ing|ed)? (?:if|whether) you\b|^do you think you could\b|^if you (?:could|would)\b|"
+    r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
+    r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
+    # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
+    r"^might you\b|^(?:may|might|can|could) i (?:ask|trouble|bother) you (?:to|for)\b|^(?:perhaps|maybe) you might\b"
+    r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right)"
+    r"(?: (?:for you )?to| if you)\b", re.IGNORECASE)
+
+# Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
+# moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
+_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$",
+                       re.IGNORECASE)
+# A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
+_SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
+# "have a look in the bathroom": asked of the robot, though "have" opens questions ("have you …?")
+_LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
+                   r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b", re.IGNORECASE)
+# Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
+_HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
+_PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
+
+
+def classify(clause: str) -> ClauseKind:
+    opening = FILLER.match(clause.strip())  # what is said before a request without changing it
+    said_first = opening.group(0) if opening else ""
+    text = clause.strip()[len(said_first):].strip()
+    lowered = text.lower()
+    if not text or RHETORICAL.match(text):
+        return ClauseKind.STATEMENT
+    if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
+                                               r"(?:can'?t|cannot|couldn'?t|won'?t)) stop\b", lowered):
+        return ClauseKind.REQUEST  # a stop is always a request
+    if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
+        return ClauseKind.REQUEST
+    if (_CALL_OFF.search(lowered) or _NEGATION.search(_MIND.sub("", lowered)) or LATER.search(lowered)
+            or re.match(r"^no\b", lowered)):
+        return ClauseKind.NEGATED
+    if asks_ability(text):
+        return ClauseKind.ABILITY
+    if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)):
+        return ClauseKind.REQUEST  # "could you …"; "first you go to bathroom": a step said to the robot
+    first = words(lowered)[0]
+    if first == "do" and ((len(words(lowered)) > 1 and words(lowered)[1] in IMPERATIVES)
+                          or re.search(r"\b(?:please|kindly)\W*$", said_first, re.I)):
+        return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
+    if first in _HOLD and not _PLACE.search(lowered):
+        return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
+    if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
+        return ClauseKind.REQUEST
+    if _LOOK.match(text):
+        return ClauseKind.REQUEST
+    if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
+        return ClauseKind.QUESTION
+    terse = words(lowered)
+    if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now"):
+        return ClauseKind.REQUEST  # a terse command: "projector on", "kitchen, please"
+    return ClauseKind.STATEMENT
