@@ -70,9 +70,29 @@ def test_what_still_reads_as_said_to_the_robot(text: str, steps: tuple[str, ...]
     "Perhaps you might ring Clara for me.",
     "I'd be ever so grateful if you might consider taking yourself off to the hallway.",
     "Could you take a gander at the bathroom for me?",
+    "Can I get you to switch the projector off?",
 ])
 def test_the_most_formal_requests_ask(text: str) -> None:
     assert [c.kind for c in read_request(text).clauses] == [ClauseKind.REQUEST]
+
+
+def test_having_the_robot_to_oneself_asks_nothing() -> None:
+    assert not read_request("Can I have you to myself for a minute?").asks_action
+
+
+@pytest.mark.parametrize("text", ["Hallway, and quick about it.", "Bedroom. Chop chop.", "Kitchen, sharpish!"])
+def test_haste_after_a_bare_place_asks_for_it(text: str) -> None:
+    assert read_request(text).steps == (text.split(",")[0].split(".")[0],)
+
+
+def test_haste_after_a_request_is_no_step_of_its_own() -> None:
+    assert read_request("Go to the kitchen and switch the projector on, quick!").steps == (
+        "Go to the kitchen", "switch the projector on")
+
+
+def test_tell_you_what_opens_talk_and_asks_nothing() -> None:
+    assert not read_request("Tell you what, that was a lovely film last night.").asks_action
+    assert read_request("I'll tell you what, ring Ben.").steps == ("ring Ben",)
 
 
 def test_a_checklists_numbers_are_its_order() -> None:

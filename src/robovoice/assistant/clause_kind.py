@@ -56,7 +56,8 @@ _POLITE = re.compile(
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
     r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
     # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
-    r"^might you\b|^(?:may|might|can|could) i (?:ask|trouble|bother) you (?:to|for)\b|^(?:perhaps|maybe) you might\b"
+    r"^might you\b|^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
+    r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
     r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right)"
     r"(?: (?:for you )?to| if you)\b", re.IGNORECASE)
 

@@ -266,12 +266,15 @@ _BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
 
 
+_URGES = re.compile(r"\b(?:please|quick|sharp|snappy|sharpish|chop|pronto|step on it|double)\b", re.IGNORECASE)
+
+
 def _tag_asks(before: Clause, tag: str) -> bool:
     """Whether the tag makes the clause before it a request: an ability question that asks with
     it ("would you ever …, please?"), a bare place or thing with "please" ("Bedroom, please.")."""
     if before.kind is ClauseKind.ABILITY:
         return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
-    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and "please" in tag.lower() \
+    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and _URGES.search(tag) is not None \
         and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
 
 

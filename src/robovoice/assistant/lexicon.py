@@ -19,13 +19,16 @@ FILLER = re.compile(
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|"
     r"i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
-    r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all|yo|"
+    r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all|yo|(?:i'?ll )?tell you what|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
 )
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please| like)?|"
              r"(?:pretty )?please|thanks|thank you|dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|"
-             r"sweetheart|lovey)$",
+             r"sweetheart|lovey|"
+             # haste said after a request: "Hallway, and quick about it."
+             r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?sharpish|chop chop|pronto|"
+             r"(?:and )?step on it|on the double|as quick as you can)$",
              re.IGNORECASE)
 
 # Putting a request off.
