@@ -678,3 +678,19 @@ def test_an_ability_question_about_stopping_does_not_halt() -> None:
     from robovoice.assistant.gate import halts
     assert not halts(read_request("Hypothetically, if the cat ran in front of you, could you stop in time?"))
     assert halts(read_request("Hold it! Stay put!"))
+
+
+@pytest.mark.parametrize(("text", "lookups"), [
+    ("Check how much battery you've got first, and then head into the kitchen.", (True, False)),
+    ("Could you check what your battery's at and then ring Clara?", (True, False)),
+    ("See how charged you are first, then go along to the bathroom.", (True, False)),
+    ("Check the kitchen and then call Ben.", (False, False)),  # a look in a place is a drive
+])
+def test_a_check_of_the_robots_own_charge_is_a_look_up(text: str, lookups: tuple[bool, ...]) -> None:
+    assert read_request(text).lookups == lookups
+
+
+def test_see_if_asks_for_a_look_and_after_a_request_says_what_it_is_for() -> None:
+    assert read_request("See whether I left the bedroom window open, would you?").asks_action
+    assert read_request("Go to the bedroom and see if I left the window open.").steps == ("Go to the bedroom",)
+    assert not read_request("See what I mean?").asks_action

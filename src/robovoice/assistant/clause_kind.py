@@ -67,9 +67,13 @@ _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|cal
                        re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
+# "see if the bedroom light's on", "see how charged you are": a look asked for (after a request, what
+# it is for: "go to the bedroom and see if I left the window open", read_request)
+SEE_IF = r"^see (?:if|whether|how (?:much|many|full|charged|far|long)|what (?:your|the))\b"
 # "have a look in the bathroom": asked of the robot, though "have" opens questions ("have you …?")
 _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
-                   r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b", re.IGNORECASE)
+                   r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b"
+                   r"|" + SEE_IF, re.IGNORECASE)
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)

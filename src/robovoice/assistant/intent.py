@@ -28,7 +28,7 @@ import re
 
 from robovoice.assistant.addressee import set_aside
 from robovoice.assistant.amend import amend, go_list, named_back, repeats
-from robovoice.assistant.clause_kind import classify
+from robovoice.assistant.clause_kind import SEE_IF, classify
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
     ARRIVED,
@@ -194,6 +194,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if kind is ClauseKind.REQUEST and when_only:
             kind = ClauseKind.NEGATED  # "Later on, after lunch, you can go back to your charger"
         when_only = bool(LATER_ONLY.match(bare)) or (when_only and not bare)
+        if kind is ClauseKind.REQUEST and re.match(SEE_IF, bare, re.I) and previous is not None \
+                and previous.kind is ClauseKind.REQUEST:
+            kind = ClauseKind.STATEMENT  # "go to the bedroom and see if I left the window open": what it is for
         if kind is ClauseKind.REQUEST and _reason(bare, clauses):
             kind = ClauseKind.STATEMENT  # "ring Clara, I want to show her my cake": why, not what
         if kind is ClauseKind.REQUEST and FAREWELL.match(bare):
