@@ -694,3 +694,29 @@ def test_see_if_asks_for_a_look_and_after_a_request_says_what_it_is_for() -> Non
     assert read_request("See whether I left the bedroom window open, would you?").asks_action
     assert read_request("Go to the bedroom and see if I left the window open.").steps == ("Go to the bedroom",)
     assert not read_request("See what I mean?").asks_action
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Right then, bye-bye sweetheart, love to the kids, speak Sunday. You can hang up now, dear.",
+     ("You can hang up now",)),
+    ("Tell Anna I'm flagging... actually, just end the call.", ("just end the call",)),
+    ("Ring Ben and tell him I'll be late.", ("Ring Ben",)),
+    ("Give my love to Ben, and hang up.", ("hang up",)),
+])
+def test_messages_and_partings_for_the_person_on_the_call_are_no_steps(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+def test_a_polite_tell_me_is_a_look_up() -> None:
+    assert read_request("Can you tell me what your battery's at, and then take yourself back to the dock?"
+                        ).lookups == (True, False)
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Ring Clara, actually just Ben.", ("just Ben",)),
+    ("Go to the kitchen... actually, just ring Ben.", ("just ring Ben",)),
+    ("Go to the kitchen. Actually, ring Ben too.", ("Go to the kitchen", "ring Ben too")),
+    ("Turn the projector on. Actually, just a sec, ring Ben first.", ("ring Ben first", "Turn the projector on")),
+])
+def test_actually_just_after_a_request_is_all_that_is_wanted(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -277,6 +277,8 @@ async def test_a_guess_is_looked_up_once_only() -> None:
     ("The robot sees a small image of the room.", "I see a small image of the room."),
     ("The robot needs to charge, so the robot goes to its dock.", "I need to charge, so I go to my dock."),
     ("The robot was in the hallway.", "I was in the hallway."),
+    ("The robot took a picture and captured an image.", "I took a picture and captured an image."),
+    ("The robot went to the kitchen.", "I went to the kitchen."),
     ("The robot arms are in the kitchen.", "The robot arms are in the kitchen."),  # not its own verb
     ("I am in the kitchen.", "I am in the kitchen."),  # already its own voice
     ("The robot vacuum is in the hallway.", "The robot vacuum is in the hallway."),  # another robot

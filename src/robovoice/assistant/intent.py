@@ -81,7 +81,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
     amending = False  # right after a bare "sorry" or "I mean" (amend)
     text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
-    for part in _arrival_first(split_clauses(text)):
+    for part in _actually_only(_arrival_first(split_clauses(text))):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if clauses and _tag_asks(clauses[-1], part):  # "would you ever …, please?"; "Bedroom, please."
                 clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)
@@ -291,6 +291,25 @@ def _arrival_first(parts: list[str]) -> list[str]:
         late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part)
         if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:
             out += [part[:late.start()], late.group(1)]
+        else:
+            out.append(part)
+    return out
+
+
+_ACTUALLY = re.compile(r"^\s*actually\b[\s,]*", re.IGNORECASE)
+_ONLY_THIS = re.compile(r"^(?:just|only)\s+(?!(?:a|one) (?:sec|second|minute|moment|mo)\b)", re.IGNORECASE)
+
+
+def _actually_only(parts: list[str]) -> list[str]:
+    """"…, actually, just end the call" after a request: only what follows is wanted, as after
+    "no, just …" (text test v36: "Tell Anna I'm flagging... actually, just end the call")."""
+    out: list[str] = []
+    for i, part in enumerate(parts):
+        said = _ACTUALLY.match(part)
+        rest = part[said.end():] if said else ""
+        after = rest or (parts[i + 1].strip() if i + 1 < len(parts) else "")
+        if said and _ONLY_THIS.match(after) and any(classify(p) is ClauseKind.REQUEST for p in out):
+            out += ["no", rest] if rest else ["no"]
         else:
             out.append(part)
     return out

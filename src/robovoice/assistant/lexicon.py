@@ -15,9 +15,9 @@ def words(text: str) -> list[str]:
 
 # Said before or around a request without changing it.
 FILLER = re.compile(
-    r"^(?:(?:please|kindly|now|ok|okay|so|oh|well|right|alright|also|first of all|to (?:begin|start) with|first|"
-    r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|"
-    r"i mean|i meant|wait a (?:sec|second|minute|moment|mo)|"
+    r"^(?:(?:(?:just|wait) a (?:sec|second|minute|moment|mo)|please|kindly|now|ok|okay|so|oh|well|right|alright|"
+    r"also|first of all|to (?:begin|start) with|first|"
+    r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|i mean|i meant|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all|yo|(?:i'?ll )?tell you what|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
@@ -136,11 +136,22 @@ RHETORICAL = re.compile(r"^(?:can|could|would|will) (?:you|ye) (?:ever )?(?:beli
                         re.IGNORECASE)
 
 # Words for the person on the call, not a step for the robot: "tell Anna cheerio (from me)", "say
-# ta-ra to our Ben", "wish Clara goodnight". The robot passes no messages; the person says them.
+# ta-ra to our Ben", "wish Clara goodnight", "tell Anna I'm flagging", "love to the kids, speak
+# Sunday". The robot passes no messages; the person says them.
 _PARTING = (r"(?:bye|bye-bye|bye bye|goodbye|good-bye|good bye|cheerio|ta-ra|tara|ta ta|so long|farewell|"
             r"good ?night|night night|see you|hello|hi|thanks|thank you|all the best|best wishes|my love)")
 FAREWELL = re.compile(rf"^(?:(?:tell|wish|bid) (?:our |my )?\w+(?: \w+)? (?:a |my )?{_PARTING}"
-                      rf"|say (?:a )?{_PARTING}(?: to\b| for me\b|$))", re.IGNORECASE)
+                      rf"|say (?:a )?{_PARTING}(?: to\b| for me\b|$)"
+                      # a message ("tell Anna I'm flagging", "tell him that …"; not "tell me …")
+                      r"|tell (?!me\b|us\b)(?:our |my )?\w+(?: \w+)? (?:that|i|i'\w+|we|we'\w+|it|it's|he|he's|she"
+                      r"|she's|they|they're)\b"
+                      # partings said into the call: "love to the kids", "speak Sunday", "take care"
+                      r"|(?:(?:give|send) (?:them |him |her )?)?(?:my |all my |lots of |much |our )?"
+                      r"love to\b"
+                      r"|(?:speak|talk|see you|catch you)(?: to you| with you)?(?: on| next| this)? "
+                      r"(?:soon|later|tomorrow"
+                      r"|(?:mon|tues|wednes|thurs|fri|satur|sun)day|the weekend|next week)\b|take care\b"
+                      r"|mind how you go\b)", re.IGNORECASE)
 
 # A hedge said after a request: "…, then go and wait at the front door for her, I guess" (text
 # test v26). It asks nothing, though it is short enough to look like "…, then the bedroom".

@@ -109,12 +109,13 @@ class Intent:
 
 
 _TELL_ME = re.compile(
-    r"(?:please\s+)?(?:(?:tell|let)\s+me|(?:try )?find out)\b(?!\s+(?:go|drive|come|call|talk|speak))"
+    r"(?:(?:can|could|would|will) you (?:please )?|please )?(?:(?:(?:tell|let)\s+me|(?:try )?find out)\b"
+    r"(?!\s+(?:go|drive|come|call|talk|speak))"
     # a check of the robot's own charge: "check how much battery you've got first" (not "check the
     # kitchen", a look in a place, which is a drive)
-    r"|(?:(?:can|could|would|will) you (?:please )?)?(?:check|see|look at)\b"
+    r"|(?:check|see|look at)\b"
     r"(?= (?:how|what|your|the|if|whether)\b[^,;]*\b"
-    r"(?:battery|batteries|charge|charged|charging|power level|juice)\b)", re.IGNORECASE)
+    r"(?:battery|batteries|charge|charged|charging|power level|juice)\b))", re.IGNORECASE)
 _STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|around))\b", re.IGNORECASE)
 _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",

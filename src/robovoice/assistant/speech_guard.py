@@ -203,7 +203,10 @@ _SELF = re.compile(r"\bthe robot(?:'s\b|\s+(is|isn't|has|hasn't|was|wasn't|does|
                    r"|could|couldn't|will|won't|would|should|must|may|might|needs|wants"
                    # a verb of its own (not "the robot arms are"): "The robot sees a small image of the room."
                    r"|sees|hears|knows|goes|says|thinks|finds|gets|makes|moves|drives|works|stays|waits|keeps|shows"
-                   r"|comes|remains|uses|takes|seems|looks|sounds|feels|sits|stands|tries|carries|heads|stops)\b)",
+                   r"|comes|remains|uses|takes|seems|looks|sounds|feels|sits|stands|tries|carries|heads|stops"
+                   # and what it did: "The robot took a picture and captured an image." (audio test v27)
+                   r"|took|went|drove|came|moved|arrived|reached|returned|called|rang|ended|turned|switched|started"
+                   r"|stopped|made|got|saw|found|captured|checked|looked|tried|left|heard|said)\b)",
                    re.IGNORECASE)
 # the robot as the object of the person's doing: "Please tell the robot which place you mean."
 _SELF_OBJECT = re.compile(r"\b(tell|ask|show|give|let|help|follow|call|wake|remind)\s+the robot\b", re.IGNORECASE)
