@@ -214,7 +214,7 @@ def test_there_refers_to_a_place_named_by_another_of_its_names() -> None:
 def test_a_places_other_name_fits_its_drive_whatever_the_verb() -> None:
     """Dev alias-1 (text test v18: "Would you trundle out to the hall for me?" was refused: no
     declared verb, and "hall" is not "hallway")."""
-    text = read_request("Would you mosey on down to the loo?")
+    text = read_request("Would you sashay on down to the loo?")  # no declared verb
     assert refusal(text, SPECS["navigate_to"], {"target": "bathroom"}, (), VOICE) is None
     body = refusal(text, SPECS["navigate_to"], {"target": "kitchen"}, (), VOICE)
     assert body is not None and body["details"]["reason"] == OTHER

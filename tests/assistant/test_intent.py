@@ -720,3 +720,26 @@ def test_a_polite_tell_me_is_a_look_up() -> None:
 ])
 def test_actually_just_after_a_request_is_all_that_is_wanted(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Off you go to the bathroom, lad, and then give Clara a ring.",
+     ("Off you go to the bathroom", "give Clara a ring")),
+    ("Right, off you go to the bedroom, young man.", ("off you go to the bedroom",)),
+    ("You can put the phone down on her now, ta.", ("You can put the phone down on her now",)),
+    ("Right, off with that projector now, I've seen enough.", ("off with that projector now",)),
+    ("Never mind where you were off to. The hallway instead, please.", ("The hallway instead",)),
+    ("Hallway, please. Quick as you like.", ("Hallway",)),
+])
+def test_what_the_robot_is_called_thanks_and_off_with(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "stop"), [
+    ("Whoa, whoa, hold still a sec, the cat's right under your wheels!", True),
+    ("Oh heavens, keep still, there's a toy on the floor!", True),
+    ("Is it possible for you to move around while I'm on a call, or do you have to stay still?", False),
+    ("The kids won't keep still.", False),
+])
+def test_hold_still_said_to_the_robot_is_a_stop(text: str, stop: bool) -> None:
+    assert read_request(text).asks_action is stop

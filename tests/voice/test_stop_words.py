@@ -37,7 +37,8 @@ def test_a_stop_phrase_with_fillers_around_it_is_a_stop(text: str) -> None:
 
 @pytest.mark.parametrize("text", ["Wait, wait, stay there!", "Hold on, stay put.", "Okay, wait! Don't move!",
                                   "Stay right there, please.", "Stop, stop, wait there.",
-                                  "Whoa, whoa, hold your horses!", "Hang on, stand still."])
+                                  "Whoa, whoa, hold your horses!", "Hang on, stand still.",
+                                  "Hold still!", "Keep still, please."])
 def test_several_stop_phrases_in_a_row_are_a_stop(text: str) -> None:
     # the words people use for "stop" beside "stop", one after another with or without commas
     assert is_stop_command(text)

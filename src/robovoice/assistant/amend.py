@@ -112,7 +112,8 @@ def instead(clauses: list[Clause], part: str) -> list[Clause] | None:
     said = FILLER.sub("", part.strip()).strip(" .,!?")
     before = next((c for c in reversed(clauses) if FILLER.sub("", c.text.strip()).strip()), None)
     if before is None or before.kind is not ClauseKind.NEGATED or not said or not fragment(part) \
-            or not _NAMES_ONE.search(before.text) or WITHDRAWAL.match(said) or TAG.match(said) \
+            or not (_NAMES_ONE.search(before.text) or _INSTEAD.search(part.strip(" .,!?"))) \
+            or WITHDRAWAL.match(said) or TAG.match(said) \
             or any(c.kind is ClauseKind.REQUEST and repeats(said, c.text) for c in clauses):
         return None  # (not what was asked already: "go to the lounge, not the bedroom, mind, the lounge")
     after_not = re.match(r"^not\b", before.text.strip(), re.IGNORECASE) is not None

@@ -74,6 +74,8 @@ SEE_IF = r"^see (?:if|whether|how (?:much|many|full|charged|far|long)|what (?:yo
 _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
                    r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b"
                    r"|" + SEE_IF, re.IGNORECASE)
+# "Off with the projector, please." (text test v37)
+_ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.IGNORECASE)
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
@@ -87,7 +89,7 @@ def classify(clause: str) -> ClauseKind:
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
-                                               r"(?:can'?t|cannot|couldn'?t|won'?t)) stop\b", lowered):
+                                               r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered):
         return ClauseKind.REQUEST  # a stop is always a request
     if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
         return ClauseKind.REQUEST
@@ -106,7 +108,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
         return ClauseKind.REQUEST
-    if _LOOK.match(text):
+    if _LOOK.match(text) or _ON_OFF_WITH.match(text):
         return ClauseKind.REQUEST
     if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
         return ClauseKind.QUESTION

@@ -28,7 +28,10 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
              r"sweetheart|lovey|"
              # haste said after a request: "Hallway, and quick about it."
              r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?sharpish|chop chop|pronto|"
-             r"(?:and )?step on it|on the double|as quick as you can)$",
+             r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
+             # thanks, and what the robot is called in passing ("Away through to the living room, son, …":
+             # not a call to the person's son, text test v37; "my son" is someone)
+             r"ta|cheers|ta very much|son|lad|lass|sunshine|buddy|chief|kiddo|young man|my lad|my boy|my girl)$",
              re.IGNORECASE)
 
 # Putting a request off.
@@ -50,7 +53,8 @@ IMPERATIVES = frozenset({
     "hit", "dip", "bounce",  # young people's: "hit up Clara", "dip to the hallway"
 })
 # The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
-STOP = re.compile(r"\bstop\b", re.IGNORECASE)
+# "hold still" said to the robot, not of it ("do you have to stay still?", "the kids won't keep still")
+STOP = re.compile(r"\bstop\b|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b", re.IGNORECASE)
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
 YOU_DO = re.compile(rf"^you (?:{'|'.join(sorted(IMPERATIVES))})\b", re.IGNORECASE)
