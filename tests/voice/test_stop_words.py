@@ -15,7 +15,8 @@ def test_what_whisper_hears_for_stop_the_robot_is_a_stop(text: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["Stop one robot!", "Stop when robot!", "Stop one of the robot!",
-                                  "Stop that robot!", "Hold it right there!", "Hold it!"])
+                                  "Stop that robot!", "Hold it right there!", "Hold it!",
+                                  "Stop writing there. Please!", "Stop riding there!"])
 def test_a_misheard_determiner_or_hold_it_is_a_stop(text: str) -> None:
     # how Whisper heard Piper's "Stop the robot!" with the robot's "One moment." over it
     assert is_stop_command(text)
@@ -23,7 +24,7 @@ def test_a_misheard_determiner_or_hold_it_is_a_stop(text: str) -> None:
 
 @pytest.mark.parametrize("text", ["Stop my call.", "Stop my music.", "Don't stop my robot.",
                                   "Stop my robot at the kitchen.", "Stop the kitchen robot.",
-                                  "Stop the robot's music."])
+                                  "Stop the robot's music.", "Stop the video there."])
 def test_stop_my_something_else_is_not_a_stop(text: str) -> None:
     assert not is_stop_command(text)
 
