@@ -743,3 +743,9 @@ def test_what_the_robot_is_called_thanks_and_off_with(text: str, steps: tuple[st
 ])
 def test_hold_still_said_to_the_robot_is_a_stop(text: str, stop: bool) -> None:
     assert read_request(text).asks_action is stop
+
+
+def test_a_word_said_again_after_a_hesitation_and_a_name_confirmed_are_one_request() -> None:
+    intent = read_request("Put the, um, the picture thing on the wall. The projector, that's it.")
+    assert intent.steps == ("Put the picture thing on the wall",)
+    assert [c.kind for c in read_request("Go to the, um, the").clauses] == [ClauseKind.UNFINISHED]

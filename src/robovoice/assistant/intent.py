@@ -107,6 +107,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             if rest and classify(rest) is ClauseKind.REQUEST:
                 part = bare = rest  # "…, and after let's go to the kitchen": the next step
                 kind = ClauseKind.REQUEST
+        if _NAMED_IT.match(bare) and clauses and clauses[-1].kind is ClauseKind.REQUEST and fragment(clauses[-1].text) \
+                and len(clauses) > 1:  # "Put the picture thing on the wall. The projector, that's it.": its name
+            clauses[-1] = Clause(clauses[-1].text, ClauseKind.STATEMENT)
         if VAGUE.match(bare) and clauses:  # "…, turn the projector on and stuff": no step
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
@@ -243,6 +246,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+_NAMED_IT = re.compile(r"^that'?s (?:it|the one|the word|the thing|what it'?s called)$", re.IGNORECASE)
 # "…, and once you've got her, …": the step before done, then what follows
 _BACK_ONLY = re.compile(r"^\s*(?:him|her|them|it|that|through)?\W*$", re.IGNORECASE)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"

@@ -209,7 +209,13 @@ def plain(text: str) -> str:
     numbers said as order words ("first", "then")."""
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _STRETCHED.sub(r"\1", text))
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
+    text = _HESITATION.sub(r"\1", text)  # "Put the, um, the picture thing on": one clause (text test v38)
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
+
+
+# a word said again after a hesitation ("Put the, um, the …"): the sentence goes on
+_HESITATION = re.compile(r"\b(the|a|an|my|your|that|this)\s*,\s*(?:um+|uh+|erm+|er+|uhm+|hmm+)\s*,\s*\1\b",
+                         re.IGNORECASE)
 
 
 # A list's heading: "three little jobs for you: the hallway, then …", "Two things. …" (each is asked).
