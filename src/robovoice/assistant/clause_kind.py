@@ -69,11 +69,11 @@ _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|cal
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
 # "see if the bedroom light's on", "see how charged you are": a look asked for (after a request, what
 # it is for: "go to the bedroom and see if I left the window open", read_request)
-SEE_IF = r"^see (?:if|whether|how (?:much|many|full|charged|far|long)|what (?:your|the))\b"
+SEE_IF = re.compile(r"^see (?:if|whether|how (?:much|many|full|charged|far|long)|what (?:your|the))\b", re.IGNORECASE)
 # "have a look in the bathroom": asked of the robot, though "have" opens questions ("have you …?")
 _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
                    r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b"
-                   r"|" + SEE_IF, re.IGNORECASE)
+                   r"|" + SEE_IF.pattern, re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
 _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.IGNORECASE)
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").

@@ -49,6 +49,7 @@ from robovoice.assistant.lexicon import (
     ASKING_VERBS,
     FAREWELL,
     FILLER,
+    HASTE,
     IMPERATIVE_SHAPE,
     LATER_ONLY,
     LIST_INTRO,
@@ -107,8 +108,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             if rest and classify(rest) is ClauseKind.REQUEST:
                 part = bare = rest  # "…, and after let's go to the kitchen": the next step
                 kind = ClauseKind.REQUEST
-        if _NAMED_IT.match(bare) and clauses and clauses[-1].kind is ClauseKind.REQUEST and fragment(clauses[-1].text) \
-                and len(clauses) > 1:  # "Put the picture thing on the wall. The projector, that's it.": its name
+        if _NAMED_IT.match(bare) and len(clauses) > 1 and clauses[-1].kind is ClauseKind.REQUEST \
+                and fragment(clauses[-1].text):  # "Put the picture thing on the wall. The projector, that's it."
             clauses[-1] = Clause(clauses[-1].text, ClauseKind.STATEMENT)
         if VAGUE.match(bare) and clauses:  # "…, turn the projector on and stuff": no step
             clauses.append(Clause(part, ClauseKind.STATEMENT))
@@ -197,7 +198,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if kind is ClauseKind.REQUEST and when_only:
             kind = ClauseKind.NEGATED  # "Later on, after lunch, you can go back to your charger"
         when_only = bool(LATER_ONLY.match(bare)) or (when_only and not bare)
-        if kind is ClauseKind.REQUEST and re.match(SEE_IF, bare, re.I) and previous is not None \
+        if kind is ClauseKind.REQUEST and SEE_IF.match(bare) and previous is not None \
                 and previous.kind is ClauseKind.REQUEST:
             kind = ClauseKind.STATEMENT  # "go to the bedroom and see if I left the window open": what it is for
         if kind is ClauseKind.REQUEST and _reason(bare, clauses):
@@ -273,15 +274,13 @@ _BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
 
 
-_URGES = re.compile(r"\b(?:please|quick|sharp|snappy|sharpish|chop|pronto|step on it|double)\b", re.IGNORECASE)
-
-
 def _tag_asks(before: Clause, tag: str) -> bool:
     """Whether the tag makes the clause before it a request: an ability question that asks with
     it ("would you ever …, please?"), a bare place or thing with "please" ("Bedroom, please.")."""
     if before.kind is ClauseKind.ABILITY:
         return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
-    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and _URGES.search(tag) is not None \
+    urges = re.search(r"\bplease\b", tag, re.IGNORECASE) or HASTE.match(tag.strip())
+    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and urges is not None \
         and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
 
 

@@ -23,12 +23,13 @@ FILLER = re.compile(
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
 )
+# haste said after a request: "Hallway, and quick about it." (a tag; after a bare place it asks for it)
+_HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?sharpish|chop chop|pronto|"
+          r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)")
+HASTE = re.compile(rf"^(?:{_HASTE})$", re.IGNORECASE)
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please| like)?|"
              r"(?:pretty )?please|thanks|thank you|dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|"
-             r"sweetheart|lovey|"
-             # haste said after a request: "Hallway, and quick about it."
-             r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?sharpish|chop chop|pronto|"
-             r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
+             rf"sweetheart|lovey|{_HASTE}|"
              # thanks, and what the robot is called in passing ("Away through to the living room, son, …":
              # not a call to the person's son, text test v37; "my son" is someone)
              r"ta|cheers|ta very much|son|lad|lass|sunshine|buddy|chief|kiddo|young man|my lad|my boy|my girl)$",

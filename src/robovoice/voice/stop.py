@@ -24,9 +24,9 @@ STOP_PHRASES: Final = frozenset({
 # With the robot's own voice over it, Whisper tiny.en garbles the little word of "stop the
 # robot" ("Stop my robot!", "Stop one robot!", "Stop when robot!", "Stop one of the robot!"):
 # "stop", up to three short words, "robot" is a stop ("stop the robot" and "stop robot" too)
-_STOP_THE_ROBOT: Final = re.compile(r"(?:stop|halt)(?: [a-z]{1,4}){0,3} robot"
-                                    # and "right" as Whisper hears it: "Stop writing there." (audio test v28)
-                                    r"|stop (?:write|writing|rite|wright|riding|ride|righting) there")
+_MISHEARD_STOP: Final = re.compile(r"(?:stop|halt)(?: [a-z]{1,4}){0,3} robot"
+                                   # and "right" as Whisper hears it: "Stop writing there." (audio test v28)
+                                   r"|stop (?:write|writing|rite|wright|riding|ride|righting) there")
 _FILLERS: Final = ("please", "right now", "now", "immediately", "okay", "ok", "hey", "jarvis", "robot",
                    "oh", "hey robot", "you", "whoa", "woah", "wow")  # fmt: skip
 _FILLER_WORDS: Final = tuple(f.split() for f in _FILLERS)
@@ -52,7 +52,7 @@ def is_stop_command(text: str) -> bool:
                 reach[k + len(f)] = reach.get(k + len(f), False) or reach[k]
         for j in range(k + 1, len(tokens) + 1):
             span = " ".join(tokens[k:j])
-            if span in STOP_PHRASES or _STOP_THE_ROBOT.fullmatch(span):
+            if span in STOP_PHRASES or _MISHEARD_STOP.fullmatch(span):
                 reach[j] = True
     return reach.get(len(tokens), False)
 
