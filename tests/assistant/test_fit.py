@@ -271,3 +271,17 @@ def test_a_drive_to_a_contact_is_refused_and_names_the_call() -> None:
                    tools=tools) is None
     assert refusal(read_request("Go to Anna's room."), SPECS["navigate_to"], {"target": "Anna's room"}, (), VOICE,
                    tools=tools) is None
+
+
+@pytest.mark.parametrize(("text", "said", "on", "runs"), [
+    ("Turn that off... turn it off. And call Anna.", set(), False, True),
+    ("Switch it off, please.", set(), False, True),
+    ("Turn it on.", set(), True, False),  # on: a guess at what "it" is
+    ("The telly's far too loud. Turn it off.", set(), False, False),  # "it" is the telly
+    ("Turn it off.", {"telly", "loud"}, False, False),  # said before: the telly
+])
+def test_switching_it_off_with_nothing_named_is_the_one_thing_the_robot_switches(
+        text: str, said: set[str], on: bool, runs: bool) -> None:
+    refused = refusal(read_request(text), SPECS["set_projector_power"], {"on": on}, said, VOICE,
+                      tools=list(SPECS.values()))
+    assert (refused is None) is runs

@@ -749,3 +749,28 @@ def test_a_word_said_again_after_a_hesitation_and_a_name_confirmed_are_one_reque
     intent = read_request("Put the, um, the picture thing on the wall. The projector, that's it.")
     assert intent.steps == ("Put the picture thing on the wall",)
     assert [c.kind for c in read_request("Go to the, um, the").clauses] == [ClauseKind.UNFINISHED]
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Switch on the, what's it called, the projector.", ("Switch on the projector",)),
+    ("Ring my... you know... my son.", ("Ring my son",)),
+    ("Take me to the, oh, the bathroom.", ("Take me to the bathroom",)),
+])
+def test_a_search_for_the_word_does_not_split_the_request(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "asks"), [
+    ("Scrap that, I've changed my mind, the bedroom's where I need you.", True),
+    ("The bedroom, that's where I need you.", True),
+    ("Kitchen's where you should be, love.", True),
+    ("The kitchen is where I want to be.", False),
+    ("The living room, that's where my chair is.", False),
+])
+def test_a_place_where_the_robot_is_wanted_is_asked_for(text: str, asks: bool) -> None:
+    assert read_request(text).asks_action is asks
+
+
+def test_scrap_that_calls_off_and_scratch_that_sofa_does_not() -> None:
+    assert [c.kind for c in read_request("Scratch that.").clauses] == [ClauseKind.NEGATED]
+    assert not read_request("The cat will scratch that sofa.").asks_action

@@ -56,6 +56,7 @@ _POLITE = re.compile(
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
     r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
     # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
+    r"^(?:if )?(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b|"
     r"^might you\b|^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
     r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right)"
@@ -63,7 +64,8 @@ _POLITE = re.compile(
 
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
-_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$",
+_CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$"
+                       r"|^(?:scrap|scratch|ignore|disregard) (?:it|that)$",
                        re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
@@ -76,6 +78,11 @@ _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|p
                    r"|" + SEE_IF.pattern, re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
 _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.IGNORECASE)
+# "The bedroom's where I need you", "kitchen is where you should be": a place asked for
+_WHERE_WANTED = re.compile(r"(?:'s| is) where (?:i|we)(?:'d| would)? (?:really )?(?:want|need|like) you\b"
+                           r"|(?:'s| is) where you (?:should|ought to|need to|want to|belong)\b", re.IGNORECASE)
+_WH = frozenset({"what", "where", "which", "who", "when", "how"})
+_ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "long", "come", "so", "about"})
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
@@ -108,9 +115,12 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
         return ClauseKind.REQUEST
-    if _LOOK.match(text) or _ON_OFF_WITH.match(text):
+    if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text):
         return ClauseKind.REQUEST
     if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
+        said = words(lowered)
+        if len(said) <= 2 and first in _WH and (len(said) == 1 or said[1] not in QUESTION_WORDS | _ASKS_WITH):
+            return ClauseKind.STATEMENT  # "What... what time... it's so dark": a word searched for, no question
         return ClauseKind.QUESTION
     terse = words(lowered)
     if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now"):

@@ -50,8 +50,14 @@ _YOU = re.compile(r"\b(?:ye|youse|yous)\b", re.IGNORECASE)
 _CALL_COMMA = re.compile(r"(?<!\bthe )(?<!\ba )(?<!\bvideo )\b((?i:call|ring|phone))\s*,\s+(?=[A-Z][a-z]+\b)")
 
 
+# "before you go charge can you switch the projector off": the comma speech-to-text (or a
+# hurried typist) left out between the step said first and the request (text test v39)
+_ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+(?=(?:can|could|would|will) you \w)",
+                             re.IGNORECASE)
+
+
 def split_clauses(text: str) -> list[str]:
-    text = _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip()))
+    text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
     parts = [p for p in (_DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))) for p in _SPLIT.split(text)) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]

@@ -296,3 +296,32 @@ def _names(said: str, names: Collection[str]) -> bool:
     """The said stem is one of `names`, or (3 letters or more) begins one."""
     return any(n == said or (len(said) >= 3 and n.startswith(said)) for n in names)
 
+
+
+# "Turn that off... turn it off." with nothing named anywhere in the conversation: the one thing
+# the robot's tools can switch (text test v39). Off only: switching on what nobody named is a guess.
+_SWITCH_IT_OFF = re.compile(r"^(?:(?:turn|switch|shut|put|flip|click|knock) (?:it|that|this)(?: thing)? off"
+                            r"|(?:turn|switch|shut) off (?:it|that|this))(?: (?:now|please|then|again))*$",
+                            re.IGNORECASE)
+
+
+def switches_the_one_thing_off(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collection[str],
+                               switches: Mapping[str, Mapping[str, Any]]) -> bool:
+    """Every clause asks to switch "it" off (or for something else by name), nothing said before
+    names what "it" is, and this call switches off the only thing the robot can switch:
+    `switches` holds each actuation tool's parameters."""
+    flags = {tool: _flag(parameters) for tool, parameters in switches.items()}
+    flag = flags.get(name)
+    if flag is None or arguments.get(flag) is not False or sum(f is not None for f in flags.values()) != 1:
+        return False
+    asked = [_COURTESY.sub("", c.text.strip()) for c in intent.clauses]
+    return not said and any(_SWITCH_IT_OFF.match(a) for a in asked) and all(
+        c.kind is ClauseKind.REQUEST for c in intent.clauses)
+
+
+def _flag(parameters: Mapping[str, Any]) -> str | None:
+    """The one argument of a tool that takes a single yes/no ("on")."""
+    properties = parameters.get("properties") or {}
+    flags = [arg for arg, schema in properties.items()
+             if isinstance(schema, Mapping) and schema.get("type") == "boolean"]
+    return flags[0] if len(properties) == 1 and len(flags) == 1 else None

@@ -32,6 +32,7 @@ from robovoice.assistant.fit import (
     listed_names,
     named_in,
     subject_words,
+    switches_the_one_thing_off,
     unlisted,
     unsaid,
     usual,
@@ -237,6 +238,9 @@ def refusal(
             # "call her": nobody in the conversation is her ("the doctor" is Dr. Weber; "my
             # daughter" is someone the robot's contacts say, which the model can look up)
             why = UNCLEAR
+        elif spec is not None and switches_the_one_thing_off(
+                intent, name, arguments, said, {t.name: t.parameters for t in tools if not t.read_only}):
+            return None  # "turn it off": the one thing it can switch
         elif not _fits(intent, name, arguments, said, declared, glossed) or claimed_elsewhere(
                 intent, name, arguments, declared, values, said) or owner:
             why = OTHER  # "plug yourself in" and the projector; "get Ben up on the screen" and the projector

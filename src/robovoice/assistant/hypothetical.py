@@ -75,6 +75,7 @@ EVENT_FIRST = re.compile(r"^(?:once|as soon as) (?!(?:you|ye|again|more|upon|tha
 COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) (?:ready|free)|you (?:don'?t|do not|wouldn'?t) mind|"
     r"you (?:can|could|would|might|will|please|like|want)\b|"
+    r"you(?:'d| would) be (?:so |ever so )?(?:kind|good|sweet|a (?:love|dear|darling|star))\b|"
     r"you(?:'ve| have| get| got)? (?:a|the) (?:moment|minute|second|sec|chance)|"
     r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
     re.IGNORECASE)

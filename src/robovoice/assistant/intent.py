@@ -148,6 +148,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
             kind, part = ClauseKind.REQUEST, base_form(sequence.group(1)) + bare[sequence.end():]
             front = _first_asked(clauses)
+        elif (after := _AFTER_YOU.match(bare)) and classify(after.group(1)) is ClauseKind.REQUEST:
+            kind, part = ClauseKind.REQUEST, after.group(1)  # "after you turn the projector off, …": that first
+            front = _first_asked(clauses)
         elif there := ONCE_THERE.match(bare):
             # "once you're in the bedroom, get Dr Weber on a video call": going there is the
             # first step, unless a request said before goes there already
@@ -265,6 +268,7 @@ _NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
+_AFTER_YOU = re.compile(r"^(?:after|once|as soon as) you (?!(?:'|are|get|go there|arrive)\b)(\w+ \w.*)$", re.IGNORECASE)
 _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 
 

@@ -211,13 +211,26 @@ def plain(text: str) -> str:
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _STRETCHED.sub(r"\1", text))
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
     text = _HESITATION.sub(r"\1", text)  # "Put the, um, the picture thing on": one clause (text test v38)
+    text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
+    text = _SO_KIND_AS_TO.sub("please", text)  # a courtesy, not a condition
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 
-# a word said again after a hesitation ("Put the, um, the …"): the sentence goes on
-_HESITATION = re.compile(r"\b(the|a|an|my|your|that|this)\s*,\s*(?:um+|uh+|erm+|er+|uhm+|hmm+)\s*,\s*\1\b",
-                         re.IGNORECASE)
+# a word said again after a hesitation or a search for the word ("Put the, um, the …", "switch on
+# the, what's it called, the …"): the sentence goes on
+_DETERMINER = r"(?:the|a|an|my|your|that|this)"
+_HESITATION = re.compile(
+    r"\b" + _DETERMINER + r"\s*(?:,|\.{2,}|…|—|-)\s*"
+    r"(?:um+|uh+|erm+|er+|uhm+|hmm+|oh|you know|what's (?:it|that|the word) called|what's the word"
+    r"|what do you call (?:it|that|them)|what do they call (?:it|that)|whatsit|whatchamacallit|thingy)"
+    r"\s*(?:,|\.{2,}|…|—|-)\s*(" + _DETERMINER + r")\b", re.IGNORECASE)
 
+
+_SO_KIND_AS_TO = re.compile(r"\bif you(?:'d| would) be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b",
+                            re.IGNORECASE)
+_THATS_WHERE = re.compile(r"\b((?:the|my|your) \w+(?: \w+)?)\s*(?:,|—|-)\s*that(?:'s| is) where\b"
+                          r"(?= (?:i|we)(?:'d| would)? (?:really )?(?:want|need|like) you\b"
+                          r"| you (?:should|ought to|need to|want to|belong)\b)", re.IGNORECASE)
 
 # A list's heading: "three little jobs for you: the hallway, then …", "Two things. …" (each is asked).
 LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
