@@ -774,3 +774,28 @@ def test_a_place_where_the_robot_is_wanted_is_asked_for(text: str, asks: bool) -
 def test_scrap_that_calls_off_and_scratch_that_sofa_does_not() -> None:
     assert [c.kind for c in read_request("Scratch that.").clauses] == [ClauseKind.NEGATED]
     assert not read_request("The cat will scratch that sofa.").asks_action
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Would you mind switching the projector off and then ringing Clara?",
+     ("Would you mind switching the projector off", "ringing Clara")),
+    ("I'm going now, love. Could you go to the kitchen and then the hallway to let me out?",
+     ("Could you go to the kitchen", "the hallway to let me out")),
+    ("My nephew's here. Could you give him a ring later? No, actually, could you give him a ring now?",
+     ("could you give him a ring now",)),
+])
+def test_a_gerund_after_would_you_mind_and_a_place_with_its_purpose_are_steps(
+        text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "asks"), [
+    ("tbh the projector on this robot is well good", False),  # texting shorthand, no verb "tbh"
+    ("The biscuits are in the cupboard, just past the fridge on the right.", False),  # "past" is no verb
+    ("hold on can you really throw pictures onto the wall", False),  # surprise: whether it can
+    ("Can you really just go to the kitchen now, please?", True),
+    ("I'm off now.", False),
+    ("Could you give her a call for me?", True),
+])
+def test_talk_and_surprise_are_not_requests(text: str, asks: bool) -> None:
+    assert read_request(text).asks_action is asks

@@ -81,6 +81,7 @@ _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
 _WHERE_WANTED = re.compile(r"(?:'s| is) where (?:i|we)(?:'d| would)? (?:really )?(?:want|need|like) you\b"
                            r"|(?:'s| is) where you (?:should|ought to|need to|want to|belong)\b", re.IGNORECASE)
+_SUBJECTS = frozenset({"i", "we", "he", "she", "they", "it", "that", "this", "there", "you"})  # "I'm off now"
 _WH = frozenset({"what", "where", "which", "who", "when", "how"})
 _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "long", "come", "so", "about"})
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
@@ -123,6 +124,6 @@ def classify(clause: str) -> ClauseKind:
             return ClauseKind.STATEMENT  # "What... what time... it's so dark": a word searched for, no question
         return ClauseKind.QUESTION
     terse = words(lowered)
-    if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now"):
+    if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now") and terse[0].split("'")[0] not in _SUBJECTS:
         return ClauseKind.REQUEST  # a terse command: "projector on", "kitchen, please"
     return ClauseKind.STATEMENT

@@ -14,6 +14,8 @@ _ABILITY = re.compile(
     r"something you can|the kind of robot|"
     r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
     r"by yourself|on your own|your own way|ever(?! so\b))\b"
+    # surprise or doubt at what it can do: "wait, can you actually project stuff on the wall?"
+    r"|^can you (?:actually|really|even|honestly|seriously)\b(?!.*\b(?:please|now|just|for me)\b)"
     # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
     # have left?" asks about the robot's state
     r"|^(?:do you have|have you got)\b",
@@ -21,14 +23,15 @@ _ABILITY = re.compile(
 )
 # "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").
 _CAN_GENERIC = re.compile(
-    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|video calls|calls|projectors)\b",
+    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|stuff|video calls|calls|projectors)\b",
     re.IGNORECASE,
 )
 # … unless it names whom or where: "could you make a video call to Ben?", "could you take a
 # look in the kitchen?" ask for one now.
 _NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)"
                     r"|\b(?:look|peek|peep|gander|glance) (?:at|in|into|round|around) (?:the|my) \w+"
-                    r"|\bgive (?:(?:the|my|our) \w+|Dr\.? [A-Z]\w*|[A-Z][a-z]+) an? \w+")  # "give Clara a bell"
+                    # "give Clara a bell", "give her a call"
+                    r"|\bgive (?:(?:the|my|our) \w+|Dr\.? [A-Z]\w*|[A-Z][a-z]+|him|her|them|me|us) an? \w+")
 # … or a bare plural with no article or owner before it ("can you send text messages?",
 # "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
 _CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IGNORECASE)

@@ -51,6 +51,7 @@ from robovoice.assistant.lexicon import (
     FILLER,
     HASTE,
     IMPERATIVE_SHAPE,
+    IMPERATIVES,
     LATER_ONLY,
     LIST_INTRO,
     OWN_PLAN,
@@ -188,6 +189,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))
                 or (corrected and fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
+        if kind is ClauseKind.STATEMENT and previous is not None and previous.kind is ClauseKind.REQUEST \
+                and _MIND_DOING.search(previous.text) and _doing(bare):
+            kind = ClauseKind.REQUEST  # "would you mind turning the projector on and then calling Dr. Weber?"
         if kind is ClauseKind.REQUEST and condition:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
         if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
@@ -320,6 +324,19 @@ def _actually_only(parts: list[str]) -> list[str]:
         else:
             out.append(part)
     return out
+
+
+# A request said with a gerund ("would you mind turning …", "how about ringing …"): a gerund after it goes on asking.
+_MIND_DOING = re.compile(r"\b(?:mind|about|fancy)\s+(?:\w+ )?\w+ing\b", re.IGNORECASE)
+
+
+def _doing(bare: str) -> bool:
+    """The clause opens with the gerund of a request's verb: "calling Dr. Weber", "popping to the hall"."""
+    found = re.match(r"^(\w+?)(\w)?ing\b", bare.lower())
+    if found is None:
+        return False
+    root, last = found.group(1), found.group(2) or ""
+    return any(verb in IMPERATIVES for verb in (root + last, root + last + "e", root))
 
 
 def _last_said(clauses: list[Clause]) -> int | None:

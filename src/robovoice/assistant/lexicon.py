@@ -110,12 +110,15 @@ def base_form(participle: str) -> str:
 # tense, a gerund or a plural ("went over to", "lights on the").
 IMPERATIVE_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|off|over|along|across|back|down|up|round|around|"
                               r"through|out|ben) ){0,2}(?:to|into|towards?|by|tae|intae|ben) (?:the|my|your)\b|"
-                              r"(?:up|on|off) (?:the|my|your) |(?:the|my|your) \w+ (?:on|off)\b)")
+                              r"(?:up|on|off) (?:the|my|your) |(?:the|my|your) \w+ (?:on|off)\b"
+                              r"(?! (?:the|this|that|my|your|a|an|his|her|our|their|its)\b))")
 # (a gerund's "-ing" is not that of "swing", "bring", "ring")
 NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
                         r"our|their|someone|somebody|nobody|everyone|went|came|ran|drove|got|took|rode|fell|sat|"
                         r"stood|left|is|are|was|were|am|be|been|has|have|had|do|does|did|can|could|would|will|"
-                        r"should|shall|may|might|must|(?!(?:sw|br|r|s|fl|sl|st|wr|str)ing$)\w+(?:ed|ing|[^s]s))$")
+                        r"should|shall|may|might|must|past|through|behind|beside|along|across|towards?|near|under|"
+                        r"over|round|around|beyond|inside|outside|opposite|next|between|below|above|"
+                        r"(?!(?:sw|br|r|s|fl|sl|st|wr|str)ing$)\w+(?:ed|ing|[^s]s))$")
 
 # A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
 WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
@@ -166,10 +169,17 @@ _HEDGE = re.compile(r"^(?:i (?:guess|suppose|think|reckon|expect|imagine)|you kn
 _SUBJECT_VERB = re.compile(r"^(?:he|she|they|we|i|it|there) \w+$")
 
 
+# A place or a thing, then what it is for ("the front door to see me out"; not "the kids want to …")
+_PURPOSE = re.compile(r"^((?:(?:to|into|in|at) )?(?:the|my|your) \w+(?: \w+)?)(?<!\bwant)(?<!\bwants)(?<!\bneed)"
+                      r"(?<!\bneeds)(?<!\blike)(?<!\blikes)(?<!\bhave)(?<!\bhas)(?<!\bgot)(?<!\bused)(?<!\bgoing)"
+                      r"\s+(?:to|so as to|in order to) (?!(?:the|my|your|a|an|his|her|our|you)\b)\w+.*$")
+
+
 def fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben" (not a hedge: "I guess")."""
     text = FILLER.sub("", part.strip()).strip().lower()
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
+    text = _PURPOSE.sub(r"\1", text)  # what it is for: "the front door to see me out"
     return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and bool(re.match(
         r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))
 
@@ -195,7 +205,8 @@ def unfinished(clause: str) -> bool:
 # Typed the way people text, and "pleeease": the words as a request reads them ("can u ring ben
 # pls" is "can you ring ben please"; "please to call my daughter", as a learner says it)
 _TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz": "please", "thx": "thanks",
-           "n": "and", "rn": "right now", "bot": "robot"}
+           "n": "and", "rn": "right now", "bot": "robot", "ngl": "honestly", "tbh": "honestly", "imo": "honestly",
+           "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really"}
 _TEXTED_WORD = re.compile(r"\b(" + "|".join(_TEXTED) + r")\b", re.IGNORECASE)
 _STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
 
