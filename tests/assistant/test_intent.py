@@ -799,3 +799,14 @@ def test_a_gerund_after_would_you_mind_and_a_place_with_its_purpose_are_steps(
 ])
 def test_talk_and_surprise_are_not_requests(text: str, asks: bool) -> None:
     assert read_request(text).asks_action is asks
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Go to the hall... no... no, the bathroom.", ("the bathroom",)),
+    ("Call Ben. No, wait, go to the kitchen first.", ("go to the kitchen first", "Call Ben")),
+    ("Call Ben. No, wait, go to the kitchen instead.", ("go to the kitchen instead",)),
+    ("Bedroom, then the hallway, then back to your charger with you.",
+     ("Bedroom", "the hallway", "back to your charger with you")),
+])
+def test_no_said_twice_first_after_a_no_and_a_list_ending_with_you(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

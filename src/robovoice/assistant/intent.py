@@ -134,6 +134,11 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses.append(Clause(before.group(1), ClauseKind.REQUEST))
             front = len(clauses) - 1
             continue
+        if kind is ClauseKind.REQUEST and undone and _FIRST.search(part.strip()) and not fragment(part):
+            # "ring Anna — oh wait, no, go to the bedroom first": not instead of the call, before it
+            clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and not _PAUSE.match(c.text) else c
+                       for i, c in enumerate(clauses)]
+            undone, corrected = [], False
         if kind is ClauseKind.REQUEST and _FIRST.search(part.strip()):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
         if (sequence := SEQUENCE.match(bare)) and (done := base_form(sequence.group(1))) and \
@@ -212,7 +217,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind = ClauseKind.STATEMENT  # "ring Clara, I want to show her my cake": why, not what
         if kind is ClauseKind.REQUEST and FAREWELL.match(bare):
             kind = ClauseKind.STATEMENT  # "tell Anna cheerio": words for the call, not a step (lexicon)
-        aside = kind is ClauseKind.STATEMENT and bool(_ASIDE.match(bare))  # "…, no, sorry, I'm muddled, …"
+        # "…, no... no, the living room": the "no" said again withdraws nothing more
+        again = bool(WITHDRAWAL.match(bare)) and bool(undone) and not any(c.kind is ClauseKind.REQUEST for c in clauses)
+        aside = (kind is ClauseKind.STATEMENT and bool(_ASIDE.match(bare))) or again  # "…, no, sorry, I'm muddled, …"
         corrected = corrected and (not bare or aside)
         if (named := named_back(bare, clauses, undone)) is not None:
             # "…, no, not Ben", "actually, skip the kitchen": only the request that names it is withdrawn;
@@ -231,7 +238,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                        for i, c in enumerate(clauses)]
         undone = undone if not bare or aside else []  # "no, hang on, not the kitchen": the "no" still holds
         asked_before = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and not STOP.search(c.text)]
-        if WITHDRAWAL.match(bare) and (kind is ClauseKind.NEGATED or asked_before):
+        if WITHDRAWAL.match(bare) and not again and (kind is ClauseKind.NEGATED or asked_before):
             # "switch the projector on… actually, no, don't" / "…, scratch that": the requests said before are
             # withdrawn; never a stop ("Stop, stop! Cancel that and …" cancels the drive: text test v34)
             kind, undone, corrected = ClauseKind.NEGATED, asked_before, bool(asked_before)
@@ -272,6 +279,7 @@ _NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
+_PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
 _AFTER_YOU = re.compile(r"^(?:after|once|as soon as) you (?!(?:'|are|get|go there|arrive)\b)(\w+ \w.*)$", re.IGNORECASE)
 _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 

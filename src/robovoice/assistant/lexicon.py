@@ -178,7 +178,7 @@ _PURPOSE = re.compile(r"^((?:(?:to|into|in|at) )?(?:the|my|your) \w+(?: \w+)?)(?
 def fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben" (not a hedge: "I guess")."""
     text = FILLER.sub("", part.strip()).strip().lower()
-    text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well)$", "", text)
+    text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well|with you)$", "", text)  # "back to bed with you"
     text = _PURPOSE.sub(r"\1", text)  # what it is for: "the front door to see me out"
     return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and bool(re.match(
         r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))
