@@ -134,9 +134,18 @@ async def test_in_a_compound_request_the_rest_runs_and_the_question_comes_last()
 
 
 async def test_a_tool_without_a_question_runs_in_doubt() -> None:
-    script: list[ScriptedReply] = [call("navigate_to", target="kitchen"), TextReply("unused")]
-    (result,), _, _ = await conversation(script, ("go to the kitchen", True))
-    assert [c.name for c in result.calls] == ["navigate_to"] and not result.outcomes[0].is_error
+    script: list[ScriptedReply] = [call("set_projector_power", on=True), TextReply("unused")]
+    (result,), _, _ = await conversation(script, ("switch the projector on", True))
+    assert [c.name for c in result.calls] == ["set_projector_power"] and not result.outcomes[0].is_error
+
+
+async def test_a_drive_in_doubt_asks_first_and_a_yes_drives() -> None:
+    """Audio v32: "go to the... no. Never mind." heard as "go to the door, let my mind." in doubt
+    drove to the front door. A drive declares a question now: held, asked, run on a yes."""
+    script: list[ScriptedReply] = [call("navigate_to", target="front door"), TextReply("unused")]
+    (asked, answered), _, _ = await conversation(script, ("go to the door, let my mind.", True), ("Yes.", False))
+    assert asked.outcomes[0].is_error and asked.reply.endswith("Shall I go to the front door?")
+    assert [c.name for c in answered.calls] == ["navigate_to"] and not answered.outcomes[0].is_error
 
 
 async def test_a_doubtful_call_to_someone_the_robot_does_not_list_asks_which_one() -> None:
@@ -157,9 +166,10 @@ async def test_a_doubtful_call_to_someone_the_robot_does_not_list_asks_which_one
 async def test_which_one_is_asked_after_the_rest_of_a_compound_request() -> None:
     """Audio v16's compound-6 read again: the drive ran and said its phrase; the doubtful call to
     "gunner" was refused, the model only repeated the drive's phrase (not said twice), and the
-    turn ended without anyone asking which one was meant."""
-    script: list[ScriptedReply] = [call("navigate_to", target="bathroom"), call("start_video_call", contact="Gunner"),
-                                   TextReply("I am in the bathroom now."), TextReply("never used")]
-    (result,), _, state = await conversation(script, ("First go to the bathroom, and ring gunner.", True))
-    assert result.reply == "I am in the bathroom now. Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
+    turn ended without anyone asking which one was meant. (The first step is the projector here: a
+    drive in doubt is itself asked about now, `test_a_drive_in_doubt_asks_first_and_a_yes_drives`.)"""
+    script: list[ScriptedReply] = [call("set_projector_power", on=True), call("start_video_call", contact="Gunner"),
+                                   TextReply("The projector is now on."), TextReply("never used")]
+    (result,), _, state = await conversation(script, ("First switch the projector on, and ring gunner.", True))
+    assert result.reply == "The projector is now on. Which one do you mean: Anna, Ben, Clara or Dr. Weber?"
     assert not in_call(state)
