@@ -810,3 +810,13 @@ def test_talk_and_surprise_are_not_requests(text: str, asks: bool) -> None:
 ])
 def test_no_said_twice_first_after_a_no_and_a_list_ending_with_you(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Aw, go on then, pop the projector on for me.", ("pop the projector on for me",)),
+    ("Any chance you could nip to the bathroom?", ("Any chance you could nip to the bathroom",)),
+    ("Ring my... my daughter, would you?", ("Ring my daughter",)),
+    ("Kitchen. Go on.", ("Go on",)),  # after a bare place, "go on" sends the robot off (text test v39)
+])
+def test_an_urging_go_on_any_chance_and_a_word_said_again_after_a_pause(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -265,12 +265,13 @@ async def test_a_refused_call_made_again_is_not_run_and_the_next_thing_asked_is_
 
 async def test_the_action_just_done_made_again_is_not_run_and_not_said_twice() -> None:
     # text test v27: "Go on then" read as a step of its own, so the model, told the next thing
-    # asked ("take yourself off to the bedroom"), drove to the bedroom a second time
+    # asked ("take yourself off to the bedroom"), drove to the bedroom a second time ("go on"
+    # before a request is no step now; "Get going" still is)
     script: list[ScriptedReply] = [call("navigate_to", target="bedroom"), call("navigate_to", target="bedroom"),
                                    TextReply("unused")]
     async with scripted_sim(script) as (robot, server, backend):
         result = await Assistant(backend, robot.tools).turn(
-            "Go on then, take yourself off to the bedroom, there's a good lad.")
+            "Get going, take yourself off to the bedroom, there's a good lad.")
         assert robot.sim is not None
         assert robot.sim.state.nearest_place == "bedroom"
     assert made(result) == [

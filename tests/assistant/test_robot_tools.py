@@ -25,7 +25,8 @@ async def test_voice_sections_reach_the_client_in_the_tools_meta() -> None:
     assert "ring" in words["start_video_call"] and tuple(words["start_video_call"]) == voice["start_video_call"].words
     assert meta["navigate_to"] == {"role": "motion", "say": {"start": "On my way to the {target}.",
                                                              "progress": "Still on my way, {message}.",
-                                                             "success": "I am {where} now."}}
+                                                             "success": "I am {where} now.",
+                                                             "confirm": "Shall I go to the {target}?"}}
     assert meta["stop_robot"] == {"role": "stop", "say": {"success": "{was_moving:Stopped.|I am standing still.}"}}
     assert meta["get_robot_pose"] == {"role": "pose", "say": {"success": "I am near the {nearest_place}."}}
     projector = "The projector {changed:is now|was already} {on:on|off}."

@@ -57,7 +57,8 @@ _POLITE = re.compile(
     r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
     # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
     r"^(?:if )?(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b|"
-    r"^might you\b|^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
+    r"^might you\b|^(?:is there )?any chance (?:you(?:'d| could| would| can| might| will)?|of you)\b|"
+    r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
     r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right)"
     r"(?: (?:for you )?to| if you)\b", re.IGNORECASE)

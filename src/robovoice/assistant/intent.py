@@ -197,6 +197,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if kind is ClauseKind.STATEMENT and previous is not None and previous.kind is ClauseKind.REQUEST \
                 and _MIND_DOING.search(previous.text) and _doing(bare):
             kind = ClauseKind.REQUEST  # "would you mind turning the projector on and then calling Dr. Weber?"
+        if kind is ClauseKind.REQUEST and previous is not None and at is not None and previous.kind is kind \
+                and _URGE.match(previous.text.strip()):
+            clauses[at] = Clause(previous.text, ClauseKind.STATEMENT)  # "Ah go on, give Ben a ring": the urging
         if kind is ClauseKind.REQUEST and condition:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
         if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
@@ -279,6 +282,7 @@ _NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
+_URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now)?$", re.IGNORECASE)
 _PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
 _AFTER_YOU = re.compile(r"^(?:after|once|as soon as) you (?!(?:'|are|get|go there|arrive)\b)(\w+ \w.*)$", re.IGNORECASE)
 _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)

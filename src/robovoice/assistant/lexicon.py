@@ -221,7 +221,8 @@ def plain(text: str) -> str:
     numbers said as order words ("first", "then")."""
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _STRETCHED.sub(r"\1", text))
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
-    text = _HESITATION.sub(r"\1", text)  # "Put the, um, the picture thing on": one clause (text test v38)
+    # "Put the, um, the picture thing on": one clause (text test v38)
+    text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
     text = _SO_KIND_AS_TO.sub("please", text)  # a courtesy, not a condition
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
@@ -234,7 +235,8 @@ _HESITATION = re.compile(
     r"\b" + _DETERMINER + r"\s*(?:,|\.{2,}|…|—|-)\s*"
     r"(?:um+|uh+|erm+|er+|uhm+|hmm+|oh|you know|what's (?:it|that|the word) called|what's the word"
     r"|what do you call (?:it|that|them)|what do they call (?:it|that)|whatsit|whatchamacallit|thingy)"
-    r"\s*(?:,|\.{2,}|…|—|-)\s*(" + _DETERMINER + r")\b", re.IGNORECASE)
+    r"\s*(?:,|\.{2,}|…|—|-)\s*(" + _DETERMINER + r")\b"
+    r"|\b(" + _DETERMINER + r")\s*(?:\.{2,}|…)\s*\2\b", re.IGNORECASE)  # "put the... the picture thing on"
 
 
 _SO_KIND_AS_TO = re.compile(r"\bif you(?:'d| would) be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b",
