@@ -820,3 +820,8 @@ def test_no_said_twice_first_after_a_no_and_a_list_ending_with_you(text: str, st
 ])
 def test_an_urging_go_on_any_chance_and_a_word_said_again_after_a_pause(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize("text", ["Kitchen, slowly.", "Hallway, please, gently.", "Bedroom, nice and quiet now."])
+def test_a_bare_place_with_how_to_go_is_asked_for(text: str) -> None:
+    assert len(read_request(text).steps) == 1 and read_request(text).asks_action

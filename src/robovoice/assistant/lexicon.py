@@ -25,7 +25,10 @@ FILLER = re.compile(
 )
 # haste said after a request: "Hallway, and quick about it." (a tag; after a bare place it asks for it)
 _HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?sharpish|chop chop|pronto|"
-          r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)")
+          r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
+          # … and how to go: "bathroom, please, quietly" (audio test v33)
+          r"(?:please,? )?(?:and )?(?:nice and )?(?:quiet(?:ly)?|slow(?:ly)?|careful(?:ly)?|gently|soft(?:ly)?|quickly)"
+          r"(?:,? (?:now|please))?")
 HASTE = re.compile(rf"^(?:{_HASTE})$", re.IGNORECASE)
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please| like)?|"
              r"(?:pretty )?please|thanks|thank you|dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|"
