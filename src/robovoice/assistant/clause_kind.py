@@ -20,6 +20,7 @@ from robovoice.assistant.lexicon import (
     QUESTION_WORDS,
     RHETORICAL,
     STOP,
+    WANTED_THERE,
     YOU_DO,
     words,
 )
@@ -56,7 +57,7 @@ _POLITE = re.compile(
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
     r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
     # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
-    r"^(?:if )?(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b|"
+    r"^(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b|"
     r"^might you\b|^(?:is there )?any chance (?:you(?:'d| could| would| can| might| will)?|of you)\b|"
     r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
@@ -80,8 +81,7 @@ _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|p
 # "Off with the projector, please." (text test v37)
 _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.IGNORECASE)
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
-_WHERE_WANTED = re.compile(r"(?:'s| is) where (?:i|we)(?:'d| would)? (?:really )?(?:want|need|like) you\b"
-                           r"|(?:'s| is) where you (?:should|ought to|need to|want to|belong)\b", re.IGNORECASE)
+_WHERE_WANTED = re.compile(r"(?:'s| is) where " + WANTED_THERE, re.IGNORECASE)
 _SUBJECTS = frozenset({"i", "we", "he", "she", "they", "it", "that", "this", "there", "you"})  # "I'm off now"
 _WH = frozenset({"what", "where", "which", "who", "when", "how"})
 _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "long", "come", "so", "about"})
@@ -109,8 +109,9 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.ABILITY
     if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)):
         return ClauseKind.REQUEST  # "could you …"; "first you go to bathroom": a step said to the robot
-    first = words(lowered)[0]
-    if first == "do" and ((len(words(lowered)) > 1 and words(lowered)[1] in IMPERATIVES)
+    said = words(lowered)
+    first = said[0]
+    if first == "do" and ((len(said) > 1 and said[1] in IMPERATIVES)
                           or re.search(r"\b(?:please|kindly)\W*$", said_first, re.I)):
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
     if first in _HOLD and not _PLACE.search(lowered):
@@ -120,11 +121,9 @@ def classify(clause: str) -> ClauseKind:
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text):
         return ClauseKind.REQUEST
     if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
-        said = words(lowered)
         if len(said) <= 2 and first in _WH and (len(said) == 1 or said[1] not in QUESTION_WORDS | _ASKS_WITH):
             return ClauseKind.STATEMENT  # "What... what time... it's so dark": a word searched for, no question
         return ClauseKind.QUESTION
-    terse = words(lowered)
-    if len(terse) <= 3 and terse[-1] in ("on", "off", "please", "now") and terse[0].split("'")[0] not in _SUBJECTS:
+    if len(said) <= 3 and said[-1] in ("on", "off", "please", "now") and first.split("'")[0] not in _SUBJECTS:
         return ClauseKind.REQUEST  # a terse command: "projector on", "kitchen, please"
     return ClauseKind.STATEMENT

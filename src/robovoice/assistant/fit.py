@@ -297,7 +297,6 @@ def _names(said: str, names: Collection[str]) -> bool:
     return any(n == said or (len(said) >= 3 and n.startswith(said)) for n in names)
 
 
-
 # "Turn that off... turn it off." with nothing named anywhere in the conversation: the one thing
 # the robot's tools can switch (text test v39). Off only: switching on what nobody named is a guess.
 _SWITCH_IT_OFF = re.compile(r"^(?:(?:turn|switch|shut|put|flip|click|knock) (?:it|that|this)(?: thing)? off"

@@ -244,9 +244,11 @@ _HESITATION = re.compile(
 
 _SO_KIND_AS_TO = re.compile(r"\bif you(?:'d| would) be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b",
                             re.IGNORECASE)
+# Who wants the robot there, after "… is where": "I need you", "you should be" (`clause_kind`)
+WANTED_THERE = (r"(?:(?:i|we)(?:'d| would)? (?:really )?(?:want|need|like) you\b"
+                r"|you (?:should|ought to|need to|want to|belong)\b)")
 _THATS_WHERE = re.compile(r"\b((?:the|my|your) \w+(?: \w+)?)\s*(?:,|—|-)\s*that(?:'s| is) where\b"
-                          r"(?= (?:i|we)(?:'d| would)? (?:really )?(?:want|need|like) you\b"
-                          r"| you (?:should|ought to|need to|want to|belong)\b)", re.IGNORECASE)
+                          r"(?= " + WANTED_THERE + ")", re.IGNORECASE)
 
 # A list's heading: "three little jobs for you: the hallway, then …", "Two things. …" (each is asked).
 LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
