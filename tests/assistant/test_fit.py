@@ -84,6 +84,19 @@ def test_a_message_for_somebody_does_not_ask_to_call_them(text: str, contact: st
     assert fits(read_request(text), "start_video_call", WORDS["start_video_call"], {"contact": contact}) is fit
 
 
+@pytest.mark.parametrize(("text", "tool", "arguments", "fit"), [
+    ("Open the door, please.", "navigate_to", {"target": "front door"}, False),
+    ("Could you lock the back door?", "navigate_to", {"target": "front door"}, False),
+    ("Tidy the kitchen.", "navigate_to", {"target": "kitchen"}, False),
+    ("Go and open the front door.", "navigate_to", {"target": "front door"}, True),
+    ("The front door, please.", "navigate_to", {"target": "front door"}, True),
+    ("Close the call now.", "end_video_call", {}, True),
+])
+def test_a_verb_done_with_hands_to_a_place_does_not_ask_to_go_there(
+        text: str, tool: str, arguments: dict[str, object], fit: bool) -> None:
+    assert fits(read_request(text), tool, WORDS[tool], arguments) is fit
+
+
 def test_a_word_said_only_inside_another_word_does_not_fit() -> None:
     assert not fits(read_request("Bring the blanket to the bedroom."), "start_video_call", WORDS["start_video_call"],
                     {"contact": "Ben"})
