@@ -825,3 +825,28 @@ def test_an_urging_go_on_any_chance_and_a_word_said_again_after_a_pause(text: st
 @pytest.mark.parametrize("text", ["Kitchen, slowly.", "Hallway, please, gently.", "Bedroom, nice and quiet now."])
 def test_a_bare_place_with_how_to_go_is_asked_for(text: str) -> None:
     assert len(read_request(text).steps) == 1 and read_request(text).asks_action
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Mum would like you to put the projector on.", ("Mum would like you to put the projector on",)),
+    ("Nice and warm in here, isn't it, Jim? Bedroom, please.", ("Bedroom",)),
+    ("See me out to the front door, would you?", ("See me out to the front door",)),
+    ("Stop, and instead give Anna a ring.", ("Stop", "instead give Anna a ring")),
+    ("Jim, tell it. Oh, I'll say it myself. Come to the kitchen.", ("Come to the kitchen",)),
+    ("I'll see you later.", ()),  # not "see me out"
+    ("Anna always wants you to ring her on Sundays.", ()),  # a habit, not a request passed on
+    ("Your dad needs you in the kitchen.", ("Your dad needs you in the kitchen",)),
+    ("Kitchen first, then onto the bedroom.", ("Kitchen first", "onto the bedroom")),
+])
+def test_a_request_passed_on_a_question_tag_see_me_out_and_instead(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "kind"), [
+    ("Can you show films on the wall?", ClauseKind.ABILITY),  # a kind of thing, where it would be done
+    ("Could you put the film on the wall?", ClauseKind.REQUEST),
+    ("Can you make calls to my daughter?", ClauseKind.ABILITY),  # calls: a kind; "a call" asks for one
+    ("Can you make a call to my daughter?", ClauseKind.REQUEST),
+])
+def test_a_bare_plural_with_where_asks_about_a_kind_of_thing(text: str, kind: ClauseKind) -> None:
+    assert read_request(text).clauses[0].kind is kind

@@ -58,6 +58,10 @@ _POLITE = re.compile(
     r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
     # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
     r"^(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b|"
+    # a request passed on for somebody in the room: "Harold wants you to put the projector on",
+    # "she wants you in the bedroom" (text test v44, audio test v35)
+    r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|your|our) \w+) (?:wants|needs|would like|'d like) you "
+    r"(?:to\b|(?:in|at|by) the\b)|"
     r"^might you\b|^(?:is there )?any chance (?:you(?:'d| could| would| can| might| will)?|of you)\b|"
     r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
@@ -78,6 +82,12 @@ SEE_IF = re.compile(r"^see (?:if|whether|how (?:much|many|full|charged|far|long)
 _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
                    r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b"
                    r"|" + SEE_IF.pattern, re.IGNORECASE)
+# "See me to the front door", "see us out": a request to go along (not "see you later")
+_SEE_OFF = re.compile(r"^see (?:me|us|him|her|them) (?:out|to|off|down|up)\b", re.IGNORECASE)
+# A question tag on its own ("Don't you, Harold?") and a bare "tell it" (the robot) say nothing
+# to do: both are said to somebody else in the room (text test v44)
+_ASIDE = re.compile(r"^(?:(?:do|does|did|is|are|was|were|can|could|would|will|have|has)n'?t|won'?t) "
+                    r"(?:you|he|she|it|they|we|i)$|^(?:tell|ask) it$", re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
 _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.IGNORECASE)
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
@@ -96,6 +106,8 @@ def classify(clause: str) -> ClauseKind:
     text = clause.strip()[len(said_first):].strip()
     lowered = text.lower()
     if not text or RHETORICAL.match(text):
+        return ClauseKind.STATEMENT
+    if _ASIDE.match(text):
         return ClauseKind.STATEMENT
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
                                                r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered):
@@ -118,7 +130,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
         return ClauseKind.REQUEST
-    if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text):
+    if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text):
         return ClauseKind.REQUEST
     if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
         if len(said) <= 2 and first in _WH and (len(said) == 1 or said[1] not in QUESTION_WORDS | _ASKS_WITH):

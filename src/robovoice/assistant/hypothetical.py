@@ -33,13 +33,17 @@ _NAMED = re.compile(r"\b(?:to|with) (?:(?:the|my) \w+|Dr\.? [A-Z]|[A-Z][a-z]+)"
                     # "give Clara a bell", "give her a call"
                     r"|\bgive (?:(?:the|my|our) \w+|Dr\.? [A-Z]\w*|[A-Z][a-z]+|him|her|them|me|us) an? \w+")
 # … or a bare plural with no article or owner before it ("can you send text messages?",
-# "could you make ordinary phone calls?"): a kind of thing, not one the person wants now.
-_CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)$", re.IGNORECASE)
+# "could you make ordinary phone calls?"), also where or to whom ("can you play films on the
+# wall?", "can you make video calls to the doctor?": text test v44, audio test v35): a kind of
+# thing, not one the person wants now ("make a video call to the doctor" asks for one).
+_CAN_PLURAL = re.compile(r"^(?:can|could) you \w+ ((?:\w+ ){0,2})(\w+s)"
+                         r"(?: (?:on|onto|in|around|round|across|to|with) (?:(?:the|a|any|my|our) )?\w+)?$",
+                         re.IGNORECASE)
 
 
 def _asks_about_kinds(text: str) -> bool:
     match = _CAN_PLURAL.match(text.rstrip(" ?.!"))
-    return match is not None and not set(words(match.group(0))[3:]) & NOT_GENERIC
+    return match is not None and not set(words(match.group(1) + match.group(2))) & NOT_GENERIC
 
 
 # Irish English asks with "would you ever …": "would you ever give Anna a ring there?" is a

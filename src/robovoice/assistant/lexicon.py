@@ -16,7 +16,7 @@ def words(text: str) -> list[str]:
 # Said before or around a request without changing it.
 FILLER = re.compile(
     r"^(?:(?:(?:just|wait) a (?:sec|second|minute|moment|mo)|please|kindly|now|ok|okay|so|oh|well|right|alright|"
-    r"also|first of all|to (?:begin|start) with|first|"
+    r"also|instead|first of all|to (?:begin|start) with|first|"
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|i mean|i meant|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all|yo|(?:i'?ll )?tell you what|"
@@ -184,7 +184,8 @@ def fragment(part: str) -> bool:
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well|with you)$", "", text)  # "back to bed with you"
     text = _PURPOSE.sub(r"\1", text)  # what it is for: "the front door to see me out"
     return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and bool(re.match(
-        r"^(?:back |on |over |then |next )?(?:to |into |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$", text))
+        r"^(?:back |on |over |then |next )?(?:to |into |onto |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$",
+        text))
 
 
 # An utterance whose last request ends on a word that needs one after it was cut off
