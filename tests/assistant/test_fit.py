@@ -97,6 +97,13 @@ def test_a_verb_done_with_hands_to_a_place_does_not_ask_to_go_there(
     assert fits(read_request(text), tool, WORDS[tool], arguments) is fit
 
 
+def test_a_filler_before_another_tools_words_does_not_hide_them() -> None:
+    intent = read_request("ok wrap up the call with Anna, then go to the kitchen")
+    assert fits(intent, "end_video_call", WORDS["end_video_call"], {})
+    rivals = [WORDS["end_video_call"]]
+    assert not fits(intent, "start_video_call", WORDS["start_video_call"], {"contact": "Anna"}, rivals=rivals)
+
+
 def test_a_word_said_only_inside_another_word_does_not_fit() -> None:
     assert not fits(read_request("Bring the blanket to the bedroom."), "start_video_call", WORDS["start_video_call"],
                     {"contact": "Ben"})

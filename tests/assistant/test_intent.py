@@ -850,3 +850,14 @@ def test_a_request_passed_on_a_question_tag_see_me_out_and_instead(text: str, st
 ])
 def test_a_bare_plural_with_where_asks_about_a_kind_of_thing(text: str, kind: ClauseKind) -> None:
     assert read_request(text).clauses[0].kind is kind
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("When the heating broke I was frozen, anyway, go to the kitchen.", ("go to the kitchen",)),  # what happened
+    ("When Ben rings, go to the kitchen.", ()),  # a condition still
+    ("nah, not there. Hallway.", ("Hallway",)),
+    ("Item one: 'go to the bedroom'. Item two: 'ring Ben'. OK, do those two.",
+     ("first go to the bedroom", "ring Ben")),
+])
+def test_a_past_when_a_nah_not_there_and_steps_read_out(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

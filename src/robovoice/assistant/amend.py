@@ -102,7 +102,8 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
 
 # "…, the bedroom instead", "…, just the bedroom"; after a bare "not the bathroom", "…, the bedroom"
 _INSTEAD = re.compile(r"\b(?:just|only) (?:the|my|your|to) \w|\b(?:instead|rather)$", re.IGNORECASE)
-_NAMES_ONE = re.compile(r"\b(?:the|my|your) \w|(?<=\w )[A-Z][a-z]+")
+_NAMES_ONE = re.compile(r"\b(?:the|my|your) \w|(?<=\w )[A-Z][a-z]+|\bnot there$", re.IGNORECASE)
+_NOT_THERE = re.compile(r"\bnot there$", re.IGNORECASE)
 
 
 def instead(clauses: list[Clause], part: str) -> list[Clause] | None:
@@ -116,8 +117,10 @@ def instead(clauses: list[Clause], part: str) -> list[Clause] | None:
             or WITHDRAWAL.match(said) or TAG.match(said) \
             or any(c.kind is ClauseKind.REQUEST and repeats(said, c.text) for c in clauses):
         return None  # (not what was asked already: "go to the lounge, not the bedroom, mind, the lounge")
-    after_not = re.match(r"^not\b", before.text.strip(), re.IGNORECASE) is not None
-    if _INSTEAD.search(part.strip(" .,!?")) or (after_not and re.match(r"^(?:the|my|your) \w", said, re.IGNORECASE)):
+    after_not = re.match(r"^(?:no,? )?not\b", before.text.strip(), re.IGNORECASE) is not None
+    not_there = _NOT_THERE.search(before.text.strip()) is not None  # "nah, not there. bathroom" (text test v45)
+    if _INSTEAD.search(part.strip(" .,!?")) or (after_not and (
+            not_there or re.match(r"^(?:the|my|your) \w", said, re.IGNORECASE))):
         return [*clauses, Clause(part, ClauseKind.REQUEST)]
     return None
 

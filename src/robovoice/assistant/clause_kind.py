@@ -11,6 +11,7 @@ import re
 
 from robovoice.assistant.hypothetical import asks_ability
 from robovoice.assistant.lexicon import (
+    DO_THOSE,
     FILLER,
     IMPERATIVE_SHAPE,
     IMPERATIVES,
@@ -107,7 +108,7 @@ def classify(clause: str) -> ClauseKind:
     lowered = text.lower()
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
-    if _ASIDE.match(text):
+    if _ASIDE.match(text) or DO_THOSE.match(text):
         return ClauseKind.STATEMENT
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
                                                r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered):

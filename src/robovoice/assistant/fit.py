@@ -21,7 +21,7 @@ import re
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.lexicon import words
+from robovoice.assistant.lexicon import FILLER, words
 from robovoice.assistant.reading import ClauseKind, Intent
 
 _SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus", "neighbor": "neighbour"}
@@ -94,7 +94,7 @@ _COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|y
 def _request_stems(intent: Intent, said: Collection[str],
                    kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,)) -> list[list[str]]:
     requests = [c for c in intent.clauses if c.kind in kinds]
-    clauses = [_stems(_COURTESY.sub("", c.text.strip())) for c in requests]
+    clauses = [_stems(_COURTESY.sub("", FILLER.sub("", c.text.strip()))) for c in requests]  # "ok wrap up …"
     # (an ability question's "it" is not looked up: "If Ben rings, could you answer it?" is
     # not a question about ringing him, and the robot's "yes" must be to what it names)
     if ClauseKind.REQUEST in kinds and any(_BACK_REFERENCE & set(words(c.text)) for c in requests):

@@ -74,6 +74,12 @@ CONDITION = re.compile(  # (not a question: "when will you be charged?"); "suppo
     r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case|"
     r"suppos(?:e|ing)|imagine|what if|let'?s say|say (?:i|we)\b)\b",
     re.IGNORECASE)
+# … but a "when" with a verb in the past tells what happened ("when the lights went out I
+# thought of Henry, …": text test v45), no condition on what is asked after it
+PAST_WHEN = re.compile(r"^when (?:i|he|she|we|they|it|(?:the|my|our|his|her) \w+|(?!(?:is|are|was|were|do|does|did|"
+                       r"will|can|could|would|should|shall|has|have|had)\b)[a-z]+) (?:\w+ed|went|was|were|"
+                       r"had|did|came|got|fell|rang|broke|left|lost|saw|heard|thought|said|told|knew)\b",
+                       re.IGNORECASE)
 # … and so is something else happening first, said before anything is asked: "once my
 # programme's finished, …", "as soon as Ben's here, …" (not the robot's own step, "once you've
 # …"; after a request it is that request's outcome: "call Ben, and once he's on, …")

@@ -39,6 +39,7 @@ from robovoice.assistant.hypothetical import (
     JUST_ASKING,
     ON_ARRIVAL,
     ONCE_THERE,
+    PAST_WHEN,
     SEQUENCE,
     asked_as_question,
     asks_ever,
@@ -171,6 +172,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs
                 continue
             kind, part = ClauseKind.REQUEST, rest  # "…, and when you get there give Ben a ring": the next step
+        elif PAST_WHEN.match(bare):
+            clauses.append(Clause(part, ClauseKind.STATEMENT))  # "when the lights went out I …": what happened
+            continue
         elif CONDITION.match(bare) or (EVENT_FIRST.match(bare) and not any(c.kind is ClauseKind.REQUEST
                                                                            for c in clauses)):
             # "if Ben rings, …", "when your battery gets low, …": not now; "if you don't mind": courtesy

@@ -178,12 +178,18 @@ _PURPOSE = re.compile(r"^((?:(?:to|into|in|at) )?(?:the|my|your) \w+(?: \w+)?)(?
                       r"\s+(?:to|so as to|in order to) (?!(?:the|my|your|a|an|his|her|our|you)\b)\w+.*$")
 
 
+# "… Okay, do those two.": what was just listed, asked again; no step of its own (text test v45)
+DO_THOSE = re.compile(r"^(?:do|carry out|follow) (?:those|these|them|both|all (?:of )?(?:those|these|them|that))"
+                      r"(?: (?:two|three|four|things|steps|instructions))?(?: (?:please|now|for me|then))*$",
+                      re.IGNORECASE)
+
+
 def fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben" (not a hedge: "I guess")."""
     text = FILLER.sub("", part.strip()).strip().lower()
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well|with you)$", "", text)  # "back to bed with you"
     text = _PURPOSE.sub(r"\1", text)  # what it is for: "the front door to see me out"
-    return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and bool(re.match(
+    return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and not DO_THOSE.match(text) and bool(re.match(
         r"^(?:back |on |over |then |next )?(?:to |into |onto |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$",
         text))
 
@@ -210,7 +216,7 @@ def unfinished(clause: str) -> bool:
 # pls" is "can you ring ben please"; "please to call my daughter", as a learner says it)
 _TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz": "please", "thx": "thanks",
            "n": "and", "rn": "right now", "bot": "robot", "ngl": "honestly", "tbh": "honestly", "imo": "honestly",
-           "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really"}
+           "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really", "nah": "no", "naw": "no"}
 _TEXTED_WORD = re.compile(r"\b(" + "|".join(_TEXTED) + r")\b", re.IGNORECASE)
 _STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
 
@@ -220,11 +226,16 @@ _NUMBERED = re.compile(r"(?:(?<=^)|(?<=[.!?;:,]\s))(?:number|item|step|point|tas
                        r"\s*[:,.)-]?\s*", re.IGNORECASE)
 
 
+# A quotation mark (not an apostrophe inside a word: "don't", "Ben's")
+_QUOTE = re.compile(r"(?<!\w)['\u2018\u2019\"\u201c\u201d]+|['\u2018\u2019\"\u201c\u201d]+(?!\w)")
+
+
 def plain(text: str) -> str:
     """`text` with texting shorthand spelled out, stretched letters said once and a checklist's
     numbers said as order words ("first", "then")."""
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _STRETCHED.sub(r"\1", text))
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
+    text = _QUOTE.sub("", text)  # "Step four: 'send the robot to the dock'": the words read out
     # "Put the, um, the picture thing on": one clause (text test v38)
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
