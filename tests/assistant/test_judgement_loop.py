@@ -397,3 +397,22 @@ async def test_a_claim_with_no_call_at_all_is_asked_for_once_more() -> None:
         [TextReply("I am now at the kitchen."), TextReply("I am in the kitchen now.")],
         "Three jobs. Kitchen first, then ring Ben.")
     assert not result.calls and len(server.requests) == 2  # once only
+
+
+async def test_after_a_refused_call_in_a_compound_request_the_step_is_offered_what_fits_it() -> None:
+    """Dev `wrapup-1` ("Right, wind up the call with Anna and then pop the projector on."): the
+    model called Anna, refused as not fitting; offered every tool that fits the request, it did
+    the projector and never ended the call. The step is offered what fits *it*."""
+    async with scripted_sim(
+        [call("start_video_call", contact="Anna"), call("end_video_call"), call("set_projector_power", on=True),
+         TextReply("Done.")],
+    ) as (robot, server, backend):
+        assert robot.sim is not None
+        await robot.sim.apply_setup("in_call")
+        result = await Assistant(backend, robot.tools).turn(
+            "Right, wind up the call with Anna and then pop the projector on.")
+        assert robot.sim is not None and robot.sim.state.projector_on
+    assert made(result) == [
+        ("start_video_call", NOT_REQUESTED), ("end_video_call", None), ("set_projector_power", None)]
+    assert sorted(t for t in server.requests[1].tool_names if t in ("end_video_call", "set_projector_power")) == [
+        "end_video_call"]

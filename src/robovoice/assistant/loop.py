@@ -253,7 +253,7 @@ class Assistant:
                     aside = way
                 else:
                     stepped.append(r)
-            fitting = turn_rules.refused_for_fit([r for _, r in ran])
+            fitting = turn_rules.refused_for_fit([r for _, r in ran], asked[done(stepped, passed):], self.tools.voice())
             for _, r in ran:  # a tool error's hint is for the model: never read out
                 hint = r.result.get("hint") if r.is_error and r.result is not None else None
                 if isinstance(hint, str):

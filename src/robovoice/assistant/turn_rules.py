@@ -8,13 +8,14 @@ import json
 from collections.abc import Collection, Mapping, Sequence
 
 from robovoice.assistant.events import ToolCalled, ToolReturned
-from robovoice.assistant.fit import listed, named_whole
+from robovoice.assistant.fit import fits, listed, named_whole
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
 from robovoice.assistant.hypothetical import asked_as_question, asks_ever
 from robovoice.assistant.lexicon import words
-from robovoice.assistant.reading import ClauseKind
+from robovoice.assistant.reading import Clause, ClauseKind, Intent
 from robovoice.assistant.speech_guard import claimed_action_in
 from robovoice.llm.base import ChatMessage, ToolCallRequested, ToolSpec
+from robovoice.manifest.voice import VoiceDecl
 
 
 def call_key(request: ToolCallRequested) -> str:
@@ -133,14 +134,21 @@ def offered(specs: Sequence[ToolSpec], lookup: bool, fitting: Collection[str] = 
     return [s for s in specs if s.read_only or not (lookup or (fitting and s.name not in fitting))]
 
 
-def refused_for_fit(outcomes: Sequence[ToolReturned]) -> list[str]:
-    """The tools that fit the request, named by a refusal of a call that did not (`gate.OTHER`)."""
-    fits: list[str] = []
+def refused_for_fit(outcomes: Sequence[ToolReturned], due: Sequence[str] = (),
+                    voice: Mapping[str, VoiceDecl] | None = None) -> list[str]:
+    """The tools that fit the request, named by a refusal of a call that did not (`gate.OTHER`);
+    of those, the ones that fit the thing asked next (`due`, its words, when `voice` gives the
+    tools' words), if any do: "wind up the call with Anna, then pop the projector on" and the
+    model called Anna; offered both tools that fit the request, it did the projector and never
+    ended the call (dev `wrapup-1`)."""
+    found: list[str] = []
     for o in outcomes:
         named = _refusal_details(o).get("fits")
         if isinstance(named, list):
-            fits += [name for name in named if isinstance(name, str)]
-    return fits
+            found += [name for name in named if isinstance(name, str)]
+    step = Intent((Clause(due[0], ClauseKind.REQUEST),)) if due else None
+    now = [n for n in found if step is not None and voice and n in voice and fits(step, n, voice[n].words, {})]
+    return now or found
 
 
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
