@@ -861,3 +861,17 @@ def test_a_bare_plural_with_where_asks_about_a_kind_of_thing(text: str, kind: Cl
 ])
 def test_a_past_when_a_nah_not_there_and_steps_read_out(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Would it be a good idea to put the projector on?", ("Would it be a good idea to put the projector on",)),
+    ("Shall we have Clara on the screen?", ("Shall we have Clara on the screen",)),
+    ("Shall we go to the kitchen after tea?", ()),  # a suggestion put off
+    ("What if you went through to the bedroom?", ("What if you went through to the bedroom",)),
+    ("What if I fell, would you ring Ben?", ()),  # a condition still
+    ("When you have a moment, go to the hallway.", ("go to the hallway",)),
+    ("Mm, go to the bedroom, then, like, ring Ben.", ("go to the bedroom", "ring Ben")),
+    ("Go to the hallway, where we keep the coats, then come back.", ("Go to the hallway", "come back")),
+])
+def test_suggestions_courtesy_fillers_and_a_place_described(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

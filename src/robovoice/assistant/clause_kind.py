@@ -67,7 +67,13 @@ _POLITE = re.compile(
     r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
     r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right)"
-    r"(?: (?:for you )?to| if you)\b", re.IGNORECASE)
+    r"(?: (?:for you )?to| if you)\b|"
+    # "would it be an idea to ring Anna?", "it might be a good idea to …", "shall we have the
+    # projector on?", "what if you gave Clara a ring?" (text test v46; "… after tea" is put off)
+    r"^shall we\b|^what if you\b|"
+    r"^(?:would|might|could) it (?:not )?be (?:a good |an )idea to\b"
+    r"|^it(?:'d| would| might)? be (?:a good |an )idea to\b",
+    re.IGNORECASE)
 
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
@@ -95,6 +101,8 @@ _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.
 _WHERE_WANTED = re.compile(r"(?:'s| is) where " + WANTED_THERE, re.IGNORECASE)
 _SUBJECTS = frozenset({"i", "we", "he", "she", "they", "it", "that", "this", "there", "you"})  # "I'm off now"
 _WH = frozenset({"what", "where", "which", "who", "when", "how"})
+# right after a question word, these ask nothing: "where I left my hymn book" (text test v46)
+_TELLS = frozenset({"i", "we", "he", "she", "they", "my", "our"})
 _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "long", "come", "so", "about"})
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
@@ -133,6 +141,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text):
         return ClauseKind.REQUEST
+    if first in _WH and len(said) > 2 and said[1] in _TELLS:
+        return ClauseKind.STATEMENT  # "…, where I think I left my hymn book": a place described, no question
     if first.split("'")[0] in QUESTION_WORDS:  # also "what's", "where's", "how's"
         if len(said) <= 2 and first in _WH and (len(said) == 1 or said[1] not in QUESTION_WORDS | _ASKS_WITH):
             return ClauseKind.STATEMENT  # "What... what time... it's so dark": a word searched for, no question

@@ -72,7 +72,7 @@ def asks_ability(text: str) -> bool:
 # A condition before a request: what to do if or when something happens, not now.
 CONDITION = re.compile(  # (not a question: "when will you be charged?"); "supposing I fell, …" too
     r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case|"
-    r"suppos(?:e|ing)|imagine|what if|let'?s say|say (?:i|we)\b)\b",
+    r"suppos(?:e|ing)|imagine|what if(?! you\b)|let'?s say|say (?:i|we)\b)\b",  # ("what if you rang Ben?": asked)
     re.IGNORECASE)
 # … but a "when" with a verb in the past tells what happened ("when the lights went out I
 # thought of Henry, …": text test v45), no condition on what is asked after it
@@ -89,14 +89,16 @@ COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) (?:ready|free)|you (?:don'?t|do not|wouldn'?t) mind|"
     r"you (?:can|could|would|might|will|please|like|want)\b|"
     r"you(?:'d| would) be (?:so |ever so )?(?:kind|good|sweet|a (?:love|dear|darling|star))\b|"
-    r"you(?:'ve| have| get| got)? (?:a|the) (?:moment|minute|second|sec|chance)|"
+    r"you(?:'ve| have| get| got)?(?: got)? (?:a|the) (?:moment|minute|second|sec|chance)|"
     r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
     re.IGNORECASE)
 # … and this is the order of steps, not a condition ("go to the door and when you get there, …").
 ON_ARRIVAL = re.compile(r"^(?:when|once) you(?:'re| are)? (?:(?:get|arrive)\w*(?: (?:there|in there|back|in|home))?"
                         r"|there|in there|back)\b[\s,]*", re.IGNORECASE)
 # … these say what to do first ("once you've checked your battery, come here").
-SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| have) (\w+)", re.IGNORECASE)
+# (not "when you have a moment", "when you've got a minute": courtesy)
+SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| have) "
+                      r"(?!(?:got )?(?:a|the) (?:moment|minute|second|sec|mo|chance)\b)(\w+)", re.IGNORECASE)
 # Being somewhere as the first step: "once you're in the bedroom, …" (not "when you're in the
 # kitchen, …": that may be whenever it is), and "… once you've got to the bedroom", said last.
 ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:'re| are) (?:in|at|by|inside|into) "
@@ -114,7 +116,7 @@ BEFORE_YOU_DO = re.compile(r"(?<=\w)\s+before you\s+(\w+ \w.*)$", re.IGNORECASE)
 # low?", "could you ring the doctor in an emergency?"): the same, said the other way round.
 _LATE_CONDITION = re.compile(r"\s((?:if|when|whenever|in case)\s.+)$", re.IGNORECASE)
 # … but after these, "if" is "whether": "take a picture so I can see if the parcel's there"
-_WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sure)$", re.IGNORECASE)
+_WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sure|^what)$", re.IGNORECASE)
 # … and a "when" after these belongs to what the request is for: "sit in the living room so
 # you're ready when I come in" is to be done now (an "if" still puts it off: "ring the doctor so
 # I can talk to her if I fall")

@@ -19,7 +19,8 @@ FILLER = re.compile(
     r"also|instead|first of all|to (?:begin|start) with|first|"
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|i mean|i meant|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
-    r"erm|er|um|umm|uh|uhh|uhm|hmm|what am i saying|what was i thinking|silly me|y'all|yo|(?:i'?ll )?tell you what|"
+    r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|like|what am i saying|what was i thinking|silly me|y'all|yo|"
+    r"(?:i'?ll )?tell you what|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
 )
@@ -41,7 +42,7 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
 # Putting a request off.
 LATER = re.compile(
     r"\b(?:later|tomorrow|tonight|this evening|next week|one day|some day|someday|in an? (?:hour|minute|while)|"
-    r"in \w+ (?:hours|minutes)|after (?:lunch|dinner|breakfast)|until)\b",
+    r"in \w+ (?:hours|minutes)|after (?:lunch|dinner|breakfast|tea|supper)|until)\b",
     re.IGNORECASE,
 )
 
