@@ -11,6 +11,7 @@ from robovoice.voice.vocabulary import (
     restore,
     restore_end,
     restore_ring,
+    restore_then_call,
     restore_titles,
 )
 
@@ -107,3 +108,19 @@ def test_bring_before_a_name_the_robot_can_call_is_ring_again() -> None:
     assert restore_ring("bring Fred.", hint) == "bring Fred."
     assert restore_ring("Bring Kitchen.", hint) == "Bring Kitchen."
     assert restore_ring("bring Anna.", command_hint("hey jarvis", [NAVIGATE])) == "bring Anna."
+
+
+def test_end_call_before_a_name_after_another_request_is_then_call_again() -> None:
+    """Audio tests v34 and v37: "projector on, then call Ben" heard as "projector on, end call,
+    Ben." — the call was never made. After another request, before a name the robot can call."""
+    hint = sim_hint()
+    assert restore_then_call("projector on, end call, Ben.", hint) == "projector on, then call Ben."
+    assert restore_then_call("projector on, and end call, Ben, please.", hint) == (
+        "projector on, and then call Ben, please.")
+    assert restore("go to the kitchen, end call, Dr. Weber.", hint) == "go to the kitchen, then call Dr. Weber."
+    # the end of a call said whole, a name it cannot call, no call action
+    assert restore_then_call("End call, please.", hint) == "End call, please."
+    assert restore_then_call("projector on, end the call with Ben.", hint) == "projector on, end the call with Ben."
+    assert restore_then_call("projector on, end call, Fred.", hint) == "projector on, end call, Fred."
+    assert restore_then_call("projector on, end call, Ben.", command_hint("hey jarvis", [NAVIGATE])) == (
+        "projector on, end call, Ben.")

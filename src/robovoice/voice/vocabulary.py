@@ -123,21 +123,39 @@ _BEFORE_BRING = r"(^|[,.;!?]\s*|\b(?i:and|then|please|you|just|now|so|also|first
 _AFTER_NAME = r"(?=\s*(?:[,.;!?]|$|(?i:for me|please|now|and|then|up|on video|straight away|right away)\b))"
 
 
+def _callable(hint: str) -> str | None:
+    """A pattern for a name the hint's call action can call ("Dr. Weber", "Ben"), or None when
+    the hint names no call action or no name."""
+    if not _CALL_ACTION.search(hint):
+        return None
+    names = {re.sub(r"^Dr\. ", "", name) for name in _NAME_ITEM.findall(hint)}
+    if not names:
+        return None
+    listed = "|".join(re.escape(n) for n in sorted(names, key=len, reverse=True))
+    return r"(?:(?i:dr|doctor|doc)\.?\s+)?(?:" + listed + r")\b"
+
+
 def restore_ring(text: str, hint: str) -> str:
     """`text` with "bring <name>" written "ring <name>" when the hint names a call action and
     <name> is one of the names it lists, at the start of a clause and at the end of one."""
-    if not _CALL_ACTION.search(hint):
+    if (who := _callable(hint)) is None:
         return text
-    names = {re.sub(r"^Dr\. ", "", name) for name in _NAME_ITEM.findall(hint)}
-    if not names:
-        return text
-    listed = "|".join(re.escape(n) for n in sorted(names, key=len, reverse=True))
-    who = r"(?:(?i:dr|doctor|doc)\.?\s+)?(?:" + listed + r")\b"
     pattern = _BEFORE_BRING + r"([Bb])ring(\s+" + who + ")" + _AFTER_NAME
     return re.sub(pattern, lambda m: m[1] + ("R" if m[2] == "B" else "r") + "ing" + m[3], text)
+
+
+# … and hears "…, then call Ben" as "…, end call, Ben" (audio tests v34 and v37: the call never
+# made, the end of a call that was not running failed). Ending a call says no name that way;
+# after another request and before a name the robot can call, it is the call.
+def restore_then_call(text: str, hint: str) -> str:
+    """`text` with ", (and) end call, <name>" written ", (and) then call <name>"."""
+    if (who := _callable(hint)) is None:
+        return text
+    pattern = r"([,;]\s*(?:(?i:and)\s+)?)(?i:end) call,?\s+(" + who + ")" + _AFTER_NAME
+    return re.sub(pattern, lambda m: m[1] + "then call " + m[2], text)
 
 
 def restore(text: str, hint: str) -> str:
     """`text` with the mishearings above put right, the title first ("bring dock to Weber" is
     "bring Dr. Weber", then "ring Dr. Weber")."""
-    return restore_ring(restore_end(restore_titles(text, hint), hint), hint)
+    return restore_then_call(restore_ring(restore_end(restore_titles(text, hint), hint), hint), hint)
