@@ -10,6 +10,7 @@ import pytest
 from robovoice.assistant.fit import claimed_elsewhere, fits, fitting_tools, listed_names, stem, unsaid
 from robovoice.assistant.gate import NOT_REQUESTED, OTHER, UNCLEAR, own_words, refusal
 from robovoice.assistant.intent import read_request
+from robovoice.assistant.lexicon import words
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.loader import load_manifest_dir
 from robovoice.manifest.voice import VoiceDecl
@@ -102,6 +103,16 @@ def test_a_filler_before_another_tools_words_does_not_hide_them() -> None:
     assert fits(intent, "end_video_call", WORDS["end_video_call"], {})
     rivals = [WORDS["end_video_call"]]
     assert not fits(intent, "start_video_call", WORDS["start_video_call"], {"contact": "Anna"}, rivals=rivals)
+
+
+def test_a_word_of_a_gloss_of_several_words_names_nothing_alone() -> None:
+    """Text test v47: "Can you make a video call to my family …?" called Dr. Weber, glossed
+    "family doctor"; the gloss's last word names him, and the whole gloss."""
+    spec = SPECS["start_video_call"]
+    call = {"contact": "Dr. Weber"}
+    assert unsaid(spec.description, spec.parameters, call, words("ring my family")) == ["Dr. Weber"]
+    assert unsaid(spec.description, spec.parameters, call, words("ring the doctor")) == []
+    assert unsaid(spec.description, spec.parameters, call, words("ring the family doctor")) == []
 
 
 def test_a_word_said_only_inside_another_word_does_not_fit() -> None:

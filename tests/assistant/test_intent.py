@@ -875,3 +875,14 @@ def test_a_past_when_a_nah_not_there_and_steps_read_out(text: str, steps: tuple[
 ])
 def test_suggestions_courtesy_fillers_and_a_place_described(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("I should like you to go to the bedroom.", ("I should like you to go to the bedroom",)),
+    ("Let's see if you can get yourself to the hallway.", ("Let's see if you can get yourself to the hallway",)),
+    ("Let's see if you can ring Ben after lunch.", ()),  # put off
+    ("Now, first of all, I want you to go to the kitchen.", ("I want you to go to the kitchen",)),
+    ("First, the kitchen, then the hallway.", ("the kitchen", "the hallway")),
+])
+def test_a_teachers_requests_and_first_of_all_alone(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

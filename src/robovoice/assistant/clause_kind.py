@@ -47,7 +47,7 @@ _POLITE = re.compile(
     # you'd better ring Clara"; not "you should have seen it", "you must be tired")
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
     r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
-    r"^i(?:'d| would) like (?:you|to|the|my|a|an|some|it)\b|^i(?:'d| would) love\b|"
+    r"^i(?:'d| would| should) like (?:you|to|the|my|a|an|some|it)\b|^i(?:'d| would) love\b|"
     # (not what someone else is to do: "I want Anna to see the garden", text test v34)
     r"^i (?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b|to\b)\w+) to \w)|"
     r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
@@ -82,6 +82,7 @@ _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|cal
                        re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
+_CHALLENGE = re.compile(r"^let'?s see (?:if|whether) you can\b", re.IGNORECASE)
 # "see if the bedroom light's on", "see how charged you are": a look asked for (after a request, what
 # it is for: "go to the bedroom and see if I left the window open", read_request)
 SEE_IF = re.compile(r"^see (?:if|whether|how (?:much|many|full|charged|far|long)|what (?:your|the))\b", re.IGNORECASE)
@@ -126,6 +127,8 @@ def classify(clause: str) -> ClauseKind:
     if (_CALL_OFF.search(lowered) or _NEGATION.search(_MIND.sub("", lowered)) or LATER.search(lowered)
             or re.match(r"^no\b", lowered)):
         return ClauseKind.NEGATED
+    if _CHALLENGE.match(lowered):
+        return ClauseKind.REQUEST  # "let's see if you can find your own way back" is to be done (text test v47)
     if asks_ability(text):
         return ClauseKind.ABILITY
     if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)):

@@ -234,11 +234,13 @@ def glosses(value: str, description: str) -> list[str]:
     return [g.strip() for g in gloss.group(1).split(",") if g.strip()] if gloss is not None else []
 
 
-def _names_for(value: str, description: str) -> set[str]:
+def _names_for(value: str, description: str, every_word: bool = False) -> set[str]:
     """The stems that name `value`: its own words as said aloud ("doctor" for "Dr."), and its
-    glosses' words."""
+    glosses' words — of a gloss of several words, its last only ("family doctor": "doctor";
+    "ring my family" named Dr. Weber, text test v47), unless `every_word` (a word that may
+    belong to it: "front" of "front room" makes "front" no sure name of the front door)."""
     own = usual(words(value))
-    glossed = {w for g in glosses(value, description) for w in words(g)}
+    glossed = {w for g in glosses(value, description) for w in (words(g) if every_word else words(g)[-1:])}
     return {stem(w) for w in (own | glossed) - _FUNCTION_WORDS}
 
 
@@ -262,7 +264,7 @@ def unsaid(description: str, parameters: Mapping[str, Any], arguments: Mapping[s
             continue  # the person's own name for it ("the front room"): the robot resolves it or says it cannot
         if any(said_whole(g, said) for g in glosses(value, description)):
             continue  # "the front room": a gloss said whole, though "front" and "room" name others too
-        others = [n for v in choices[name] if v.lower() != value.lower() for n in _names_for(v, description)]
+        others = [n for v in choices[name] if v.lower() != value.lower() for n in _names_for(v, description, True)]
         if names and not any(_names(s, names) and not any(s in n for n in others) for s in said):
             missing.append(value)
     return missing

@@ -192,7 +192,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
         previous = clauses[at] if (at := _last_said(clauses)) is not None else None
-        ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip()))  # "first the kitchen"
+        ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip())) or (  # "first the kitchen"
+            clauses and _FIRST_ALONE.match(clauses[-1].text.strip()) is not None and fragment(part))  # "First, the …"
         you_do = YOU_DO.match(bare) and IMPERATIVE_SHAPE.match(bare[4:])  # "…, then you go to the hallway"
         if kind is ClauseKind.STATEMENT and (ordered or ((fragment(part) or you_do) and (
                 corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))
@@ -275,8 +276,9 @@ _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|wha
                     r"|(?:good|dear|bless) (?:me|grief|lord)|goodness)\b", re.IGNORECASE)  # "no, sorry, I'm muddled"
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
-_ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?:to |into )?(?:the |my |your )?\w+(?: \w+)?"
+_ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:the |my |your )?\w+(?: \w+)?"
                                r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
+_FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all)?|to (?:start|begin) with)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 _AFTER = re.compile(r"^after(?:wards| that| this)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": no request
 # "Tell me that first": the question said before it is the step, and it is first already.
