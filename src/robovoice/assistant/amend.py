@@ -102,8 +102,8 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
 
 # "…, the bedroom instead", "…, just the bedroom"; after a bare "not the bathroom", "…, the bedroom"
 _INSTEAD = re.compile(r"\b(?:just|only) (?:the|my|your|to) \w|\b(?:instead|rather)$", re.IGNORECASE)
-_NAMES_ONE = re.compile(r"\b(?:the|my|your) \w|(?<=\w )[A-Z][a-z]+|\bnot there$", re.IGNORECASE)
-_NOT_THERE = re.compile(r"\bnot there$", re.IGNORECASE)
+_NOT_THERE = re.compile(r"\b(?i:not there)$")  # a place declined without its name ("nah, not there")
+_NAMES_ONE = re.compile(r"\b(?:the|my|your) \w|(?<=\w )[A-Z][a-z]+|" + _NOT_THERE.pattern)
 
 
 def instead(clauses: list[Clause], part: str) -> list[Clause] | None:
