@@ -116,6 +116,7 @@ BEFORE_YOU_DO = re.compile(r"(?<=\w)\s+before you\s+(\w+ \w.*)$", re.IGNORECASE)
 # low?", "could you ring the doctor in an emergency?"): the same, said the other way round.
 _LATE_CONDITION = re.compile(r"\s((?:if|when|whenever|in case)\s.+)$", re.IGNORECASE)
 # … but after these, "if" is "whether": "take a picture so I can see if the parcel's there"
+# (and after a bare "what", "what if you gave Clara a ring?" is a suggestion: text test v46)
 _WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sure|^what)$", re.IGNORECASE)
 # … and a "when" after these belongs to what the request is for: "sit in the living room so
 # you're ready when I come in" is to be done now (an "if" still puts it off: "ring the doctor so
