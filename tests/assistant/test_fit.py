@@ -115,6 +115,15 @@ def test_a_word_of_a_gloss_of_several_words_names_nothing_alone() -> None:
     assert unsaid(spec.description, spec.parameters, call, words("ring the family doctor")) == []
 
 
+def test_lets_see_if_you_can_is_no_message_but_let_anna_know_is() -> None:
+    """Dev `letssee-1`: "let" opened the clause, so it read as a message ("let Anna know …")
+    and the place named in it did not fit the drive."""
+    drive = ("navigate_to", WORDS["navigate_to"], {"target": "bathroom"})
+    assert fits(read_request("Let's see if you can make your own way to the bathroom."), *drive)
+    call = ("start_video_call", WORDS["start_video_call"], {"contact": "Anna"})
+    assert not fits(read_request("Let Anna know I'm fine."), *call)
+
+
 def test_a_word_said_only_inside_another_word_does_not_fit() -> None:
     assert not fits(read_request("Bring the blanket to the bedroom."), "start_video_call", WORDS["start_video_call"],
                     {"contact": "Ben"})

@@ -140,7 +140,9 @@ _MESSAGE_VERBS = frozenset(stem(w) for w in ("tell", "ask", "remind", "let", "wi
 
 
 def _message(clause: Sequence[str]) -> bool:
-    return bool(clause) and clause[0] in _MESSAGE_VERBS
+    if not clause or clause[0] not in _MESSAGE_VERBS:
+        return False
+    return clause[0] != "let" or "know" in clause[1:4]  # "let Anna know …", not "let's see if you can …"
 
 
 # "Open the door", "lock the back door", "clean the kitchen": a verb done with hands to what
