@@ -146,9 +146,10 @@ def refused_for_fit(outcomes: Sequence[ToolReturned], due: Sequence[str] = (),
         named = _refusal_details(o).get("fits")
         if isinstance(named, list):
             found += [name for name in named if isinstance(name, str)]
-    step = Intent((Clause(due[0], ClauseKind.REQUEST),)) if due else None
-    now = [n for n in found if step is not None and voice and n in voice and fits(step, n, voice[n].words, {})]
-    return now or found
+    if not due or not voice:
+        return found
+    step = Intent((Clause(due[0], ClauseKind.REQUEST),))
+    return [n for n in found if n in voice and fits(step, n, voice[n].words, {})] or found
 
 
 def wordless_reply(outcomes: Sequence[ToolReturned], read_only: Collection[str]) -> str:
