@@ -870,6 +870,7 @@ def test_a_past_when_a_nah_not_there_and_steps_read_out(text: str, steps: tuple[
     ("What if you went through to the bedroom?", ("What if you went through to the bedroom",)),
     ("What if I fell, would you ring Ben?", ()),  # a condition still
     ("When you have a moment, go to the hallway.", ("go to the hallway",)),
+    ("When you've got a mo, put the projector on.", ("put the projector on",)),
     ("Mm, go to the bedroom, then, like, ring Ben.", ("go to the bedroom", "ring Ben")),
     ("Go to the hallway, where we keep the coats, then come back.", ("Go to the hallway", "come back")),
 ])

@@ -84,12 +84,14 @@ PAST_WHEN = re.compile(r"^when (?:i|he|she|we|they|it|(?:the|my|our|his|her) \w+
 # programme's finished, …", "as soon as Ben's here, …" (not the robot's own step, "once you've
 # …"; after a request it is that request's outcome: "call Ben, and once he's on, …")
 EVENT_FIRST = re.compile(r"^(?:once|as soon as) (?!(?:you|ye|again|more|upon|that|this|it)\b)", re.IGNORECASE)
+# A moment to spare: courtesy, never a step to do first ("when you've got a mo, …").
+_A_MOMENT = r"(?:a|the) (?:moment|minute|second|sec|mo|chance)\b"
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) (?:ready|free)|you (?:don'?t|do not|wouldn'?t) mind|"
     r"you (?:can|could|would|might|will|please|like|want)\b|"
     r"you(?:'d| would) be (?:so |ever so )?(?:kind|good|sweet|a (?:love|dear|darling|star))\b|"
-    r"you(?:'ve| have| get| got)?(?: got)? (?:a|the) (?:moment|minute|second|sec|chance)|"
+    rf"you(?:'ve| have| get| got)?(?: got)? {_A_MOMENT}|"
     r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
     re.IGNORECASE)
 # … and this is the order of steps, not a condition ("go to the door and when you get there, …").
@@ -98,7 +100,7 @@ ON_ARRIVAL = re.compile(r"^(?:when|once) you(?:'re| are)? (?:(?:get|arrive)\w*(?
 # … these say what to do first ("once you've checked your battery, come here").
 # (not "when you have a moment", "when you've got a minute": courtesy)
 SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| have) "
-                      r"(?!(?:got )?(?:a|the) (?:moment|minute|second|sec|mo|chance)\b)(\w+)", re.IGNORECASE)
+                      rf"(?!(?:got )?{_A_MOMENT})(\w+)", re.IGNORECASE)
 # Being somewhere as the first step: "once you're in the bedroom, …" (not "when you're in the
 # kitchen, …": that may be whenever it is), and "… once you've got to the bedroom", said last.
 ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:'re| are) (?:in|at|by|inside|into) "
