@@ -72,3 +72,15 @@ def test_a_corrected_place_is_worded_as_the_drive_without_its_courtesy() -> None
     assert read_request("Could you go to the hallway, no wait, what am I saying, the front door.").worded_steps == (
         "go to the front door",)
     assert read_request("Leave the projector for now, just ring Ben.").worded_steps == ("just ring Ben",)  # a verb
+
+
+@pytest.mark.parametrize(("text", "worded"), [
+    ("I'm in the bathroom, by the basin. Would you come over here to me?", ("come to the bathroom",)),
+    ("We're sitting in the living room with tea. Come and join us.", ("come to the living room",)),
+    ("I am at the front door. Get over here.", ("come to the front door",)),
+    ("Come here, please.", ("Come here",)),  # nowhere said: the model asks where
+    ("I'm in the kitchen. Go to the bedroom.", ("Go to the bedroom",)),  # a place of its own
+    ("Ben is in the kitchen. Come here.", ("Come here",)),  # where someone else is
+])
+def test_here_is_worded_as_where_the_person_said_they_are(text: str, worded: tuple[str, ...]) -> None:
+    assert read_request(text).worded_steps == worded

@@ -362,6 +362,19 @@ async def test_a_request_whose_call_did_not_fit_is_asked_for_once_more_with_what
     assert len(server.requests) == 2 and server.requests[1].last_user_text == "Could you plug yourself in?"
 
 
+async def test_a_question_to_come_here_is_asked_again_as_a_drive_to_where_the_person_is() -> None:
+    """Text test v46: "I'm in the living room, … Would you come over here to me, please?" and the
+    model called Anna (refused as not fitting), then stopped: a request said as a question is
+    not asked again. Worded with the place the person said they are in, it is a plain request,
+    asked once more (dev here-4)."""
+    result, server = await scripted_turn(
+        [call("start_video_call", contact="Clara"), call("navigate_to", target="bathroom"), TextReply("Coming.")],
+        "I'm in the bathroom, on the stool. Would you come over here to me, please?")
+    assert made(result) == [("start_video_call", NOT_REQUESTED), ("navigate_to", None)]
+    assert server.requests[1].last_user_text == "Now do the next thing I asked: come to the bathroom."
+    assert server.requests[1].tool_names == ["navigate_to"]
+
+
 async def test_a_look_up_on_the_way_to_an_action_does_not_do_it() -> None:
     """Text test v21: "Switch the projector on once you've got yourself into the living room":
     the model looked up its pose first, the look-up was counted as the drive, and the turn moved

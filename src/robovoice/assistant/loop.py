@@ -263,8 +263,9 @@ class Assistant:
             # in words alone is not asked again: there a misread question would be made an action)
             left = None if more or nudged or step >= max_steps - 2 else turn_rules.unacted(asked, lookups, tools, calls)
             # the call did not fit what was asked: the request is asked for once more, offered what fits
+            # (as worded: "come over here to me?" after "I'm in the bathroom" is "come to the bathroom")
             again = not (more or nudged or left is not None) and step < max_steps - 2 and turn_rules.refit(
-                asked, stepped, passed, fitting)
+                worded, stepped, passed, fitting)
             nudged = nudged or again
             more = more or left is not None or again
             # the tool's own phrase answers this step when it fills and nothing was asked it

@@ -4,6 +4,7 @@ the `Intent` they make asks for (the steps, what was declined, what a word point
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
 
@@ -52,7 +53,9 @@ class Intent:
         """`steps` as the model is told them one at a time: a place or a person said as a
         correction ("…, and then ring Ben, no, Anna") in the request it puts right ("ring
         Anna"). Alone, "Now do the next thing I asked: Anna." got "I don't know who Anna is."
-        (text test v32)."""
+        (text test v32). And "here" where the person said where they are ("I'm in the
+        bathroom. Would you come over here to me?"): "come to the bathroom"; told "come over
+        here to me" alone after a refused call, the model said it could not."""
         worded: list[str] = []
         for i, c in enumerate(self.clauses):
             if c.kind not in (ClauseKind.REQUEST, ClauseKind.QUESTION):
@@ -63,6 +66,8 @@ class Intent:
             if righted is not None and fragment(c.text) and words(value)[0] not in IMPERATIVES \
                     and not _SAID_NOT.match(righted.text.strip()):
                 worded.append(_put_right(righted.text, value))
+            elif _HERE.search(c.text) and (where := _where_they_are(self.clauses[:i])) is not None:
+                worded.append(f"come to {where}")
             else:
                 worded.append(c.text)
         return tuple(worded)
@@ -126,6 +131,22 @@ _TAKING_BACK = re.compile(r"^(?:no|nope|no wait|wait|sorry|correction|or rather|
                           re.IGNORECASE)
 _SAID_NOT = re.compile(r"^(?:don'?t|do not|never|not|no need)\b", re.IGNORECASE)
 _COURTESY = re.compile(r"^(?:(?:could|can|would|will) you|please|just|now)\b[\s,]*", re.IGNORECASE)
+
+
+# "come (over) here", "come to me", "join us": to where the person is
+_HERE = re.compile(r"\b(?:come|get|pop|nip)\b(?!.*\b(?:to|into|in) (?:the|my|our|your)\b).*"
+                   r"\b(?:here|to me|to us|join (?:me|us))\b", re.IGNORECASE)
+# where the person said they are: "I'm in the bathroom", "we're sitting in the kitchen having tea"
+_I_AM_IN = re.compile(r"^(?:i'?m|i am|we'?re|we are)\b(?: \w+){0,2}? (?:in|at) ((?:the|my|our) \w+(?: room| door)?)\b",
+                      re.IGNORECASE)
+
+
+def _where_they_are(said: Sequence[Clause]) -> str | None:
+    """The place the person last said they are in, before a request to come to them."""
+    for clause in reversed(said):
+        if clause.kind is ClauseKind.STATEMENT and (where := _I_AM_IN.match(FILLER.sub("", clause.text.strip()))):
+            return where.group(1)
+    return None
 
 
 def _put_right(request: str, value: str) -> str:

@@ -109,7 +109,9 @@ def refit(asked: Sequence[str], outcomes: Sequence[ToolReturned], passed: int, f
     (`refused_for_fit` names what fits): "off you pop and plug yourself in" and the model rang
     the doctor, then, offered the dock, answered "I did not ask for a video call." It is asked
     for once more, offered what fits (a compound request's next step is asked anyway). Not a
-    request said as a question: there the model's own answer stays the second check."""
+    request said as a question: there the model's own answer stays the second check. `asked` as
+    the reading words it (`Intent.worded_steps`): a question it put right or resolved ("would
+    you come over here to me?" after "I'm in the bathroom") is a plain request there."""
     due = done(outcomes, passed)
     return bool(fitting) and len(asked) == 1 and due == 0 and not asked_as_question(asked[0])
 
