@@ -220,6 +220,12 @@ def test_a_clause_that_opens_with_another_tools_words_does_not_fit_this_one() ->
     assert refusal(read_request(text), SPECS["end_video_call"], {}, (), VOICE) is None
     assert refusal(read_request("End this call and ring Clara."), SPECS["start_video_call"], {"contact": "Clara"},
                    (), VOICE) is None
+    # the longer opening wins: "ring off" ends the call, though "ring" would start one (text test v48)
+    ring_off = read_request("Turn the projector off, ring off from Ben, then go to the kitchen.")
+    body = refusal(ring_off, SPECS["start_video_call"], {"contact": "Ben"}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == OTHER
+    assert refusal(ring_off, SPECS["end_video_call"], {}, (), VOICE) is None
+    assert refusal(read_request("Ring Ben."), SPECS["start_video_call"], {"contact": "Ben"}, (), VOICE) is None
 
 
 def test_a_contact_named_in_the_correction_is_asked_for() -> None:

@@ -111,7 +111,8 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     """Some request clause (a clause of `kinds`) says a word of this call's vocabulary (True when none is declared;
     `aliases`: the words of its values' other names, "hall" for the hallway), and does not open
     with a rival tool's words (`rivals`: the declared words of each tool acting on the same
-    thing) while this call's come later: "hang up the call" asks to end a call, not to start one.
+    thing) while this call's come later or are shorter: "hang up the call" and "ring off from
+    Anna" ask to end a call, not to start one.
     A call without words for its arguments (a stop, a yes/no) does not fit a clause whose
     words for it only come before what another tool acts on (`elsewhere`: the other tools'
     `subject_words`): "you can stop the call now" is not the robot's stop."""
@@ -127,8 +128,8 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
         own_only = _message(clause) or _handles(clause)
         if not any(_says_for_it(clause, phrase, aimed) for phrase in (acts if own_only else phrases)):
             continue
-        if any(_opens(clause, p) for p in others) and not any(_opens(clause, p) for p in phrases):
-            continue
+        if _longest_opening(clause, others) > _longest_opening(clause, phrases):
+            continue  # "ring off from Anna" opens with the end's "ring off", not the call's "ring"
         return True
     return False
 
@@ -175,6 +176,11 @@ def _says_for_it(clause: Sequence[str], phrase: Sequence[str], aimed: Collection
 
 def _opens(clause: Sequence[str], phrase: Sequence[str]) -> bool:
     return bool(phrase) and list(clause[:len(phrase)]) == list(phrase)
+
+
+def _longest_opening(clause: Sequence[str], phrases: Iterable[Sequence[str]]) -> int:
+    """How many words of the longest of `phrases` the clause opens with (0: none)."""
+    return max((len(p) for p in phrases if _opens(clause, p)), default=0)
 
 
 def fitting_tools(intent: Intent, declared: Mapping[str, Sequence[str]], but: str) -> list[str]:
