@@ -11,6 +11,7 @@ from robovoice.voice.vocabulary import (
     restore,
     restore_end,
     restore_ring,
+    restore_then_after_call,
     restore_then_call,
     restore_titles,
 )
@@ -124,3 +125,19 @@ def test_end_call_before_a_name_after_another_request_is_then_call_again() -> No
     assert restore_then_call("projector on, end call, Fred.", hint) == "projector on, end call, Fred."
     assert restore_then_call("projector on, end call, Ben.", command_hint("hey jarvis", [NAVIGATE])) == (
         "projector on, end call, Ben.")
+
+
+def test_ben_between_a_call_and_a_verb_is_then() -> None:
+    """Audio test v39: "call Anna, then head to the hallway" heard as "call Anna, Ben, head to
+    the hallway, …": the call read as corrected to Ben, the drive never made."""
+    hint = sim_hint()
+    assert restore_then_after_call("call Anna, Ben, head to the hallway.", hint) == (
+        "call Anna, then head to the hallway.")
+    assert restore("ring Dr. Weber, Ben, switch the projector on.", hint) == (
+        "ring Dr. Weber, then switch the projector on.")
+    # a list of names, Ben called himself, no verb after, no call action
+    assert restore_then_after_call("call Anna, Ben and Clara.", hint) == "call Anna, Ben and Clara."
+    assert restore_then_after_call("call Ben, Ben, go.", hint) == "call Ben, Ben, go."
+    assert restore_then_after_call("call Anna, Ben, please.", hint) == "call Anna, Ben, please."
+    assert restore_then_after_call("call Anna, Ben, head off.", command_hint("hey jarvis", [NAVIGATE])) == (
+        "call Anna, Ben, head off.")

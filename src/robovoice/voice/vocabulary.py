@@ -155,7 +155,24 @@ def restore_then_call(text: str, hint: str) -> str:
     return re.sub(pattern, lambda m: m[1] + "then call " + m[2], text)
 
 
+# … and "then" after a call as "Ben" ("call Anna, then head to the hallway" heard as "call Anna,
+# Ben, head to the hallway", audio test v39: the call to Anna read as corrected to Ben, and the
+# drive never made). A second name after a call to another, right before a verb of motion or
+# switching, is the order word: one call is made at a time.
+_NEXT_VERB = r"(?=(?i:go|head|drive|come|switch|turn|put|pop|nip|take|get|move|return)\b)"
+
+
+def restore_then_after_call(text: str, hint: str) -> str:
+    """`text` with "call <name>, Ben, <verb>" written "call <name>, then <verb>" (Ben: a name
+    the hint's call action lists, said as "then")."""
+    if (who := _callable(hint)) is None or not re.search(r"\bBen\b", hint):
+        return text
+    pattern = r"(\b(?i:call|ring|phone|video call)\s+(?!Ben\b)" + who + r"),\s+Ben,?\s+" + _NEXT_VERB
+    return re.sub(pattern, r"\1, then ", text)
+
+
 def restore(text: str, hint: str) -> str:
     """`text` with the mishearings above put right, the title first ("bring dock to Weber" is
     "bring Dr. Weber", then "ring Dr. Weber")."""
-    return restore_then_call(restore_ring(restore_end(restore_titles(text, hint), hint), hint), hint)
+    text = restore_then_call(restore_ring(restore_end(restore_titles(text, hint), hint), hint), hint)
+    return restore_then_after_call(text, hint)
