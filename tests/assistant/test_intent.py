@@ -887,3 +887,25 @@ def test_suggestions_courtesy_fillers_and_a_place_described(text: str, steps: tu
 ])
 def test_a_teachers_requests_and_first_of_all_alone(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("I don't suppose you could pop to the kitchen?", ("I don't suppose you could pop to the kitchen",)),
+    ("I don't suppose it would be too much bother to ring Ben?",
+     ("I don't suppose it would be too much bother to ring Ben",)),
+    ("I don't suppose you could ring Ben tomorrow?", ()),  # put off
+    ("I don't suppose you've seen my glasses?", ()),  # a question, not a request
+    ("Maybe it would be kind to ring Clara.", ("Maybe it would be kind to ring Clara",)),
+    ("It would be nice to see Anna again.", ()),  # a wish, nobody asked
+    ("Steer for the bathroom.", ("Steer for the bathroom",)),
+    ("Set a course for the kitchen, then ring Ben.", ("Set a course for the kitchen", "ring Ben")),
+    ("Bedroom, smartish.", ("Bedroom",)),
+    ("Dad's fine, so stop worrying.", ()),  # a habit given up: no stop of the robot
+    ("Stop fussing and go to the kitchen.", ("go to the kitchen",)),
+    ("Stop moving!", ("Stop moving",)),  # a stop still
+    ("Stop everything.", ("Stop everything",)),
+])
+def test_suppositions_kindness_steering_and_habits(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v48's register: a request said as a supposition or a kindness, a helm order,
+    a bare place with "smartish", and "stop worrying" said to somebody."""
+    assert read_request(text).steps == steps

@@ -13,6 +13,8 @@ from robovoice.assistant.hypothetical import asks_ability
 from robovoice.assistant.lexicon import (
     DO_THOSE,
     FILLER,
+    HABIT,
+    HASTE,
     IMPERATIVE_SHAPE,
     IMPERATIVES,
     IN_ORDER,
@@ -72,7 +74,8 @@ _POLITE = re.compile(
     # projector on?", "what if you gave Clara a ring?" (text test v46; "… after tea" is put off)
     r"^shall we\b|^what if you\b|"
     r"^(?:would|might|could) it (?:not )?be (?:a good |an )idea to\b"
-    r"|^it(?:'d| would| might)? be (?:a good |an )idea to\b",
+    r"|^(?:(?:perhaps|maybe) )?it(?:'d| would| might)? be (?:a good idea|an idea|kind|best|wise|sensible|"
+    r"(?:nice|good|lovely|helpful) of you) to\b",  # "perhaps it would be kind to ring her" (text test v48)
     re.IGNORECASE)
 
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
@@ -81,7 +84,10 @@ _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|cal
                        r"|^(?:scrap|scratch|ignore|disregard) (?:it|that)$",
                        re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
-_SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b", re.IGNORECASE)
+_SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b"
+                      # "I don't suppose you could …", "… it would be too much bother to …" (text test v48)
+                      r"|^i don'?t (?:suppose|s'pose) (?:you (?:could|would|might|can)|it(?:'d| would) be "
+                      r"(?:too much |any )?(?:trouble|bother))\b", re.IGNORECASE)
 _CHALLENGE = re.compile(r"^let'?s see (?:if|whether) you can\b", re.IGNORECASE)
 # "see if the bedroom light's on", "see how charged you are": a look asked for (after a request, what
 # it is for: "go to the bedroom and see if I left the window open", read_request)
@@ -96,6 +102,8 @@ _SEE_OFF = re.compile(r"^see (?:me|us|him|her|them) (?:out|to|off|down|up)\b", r
 # to do: both are said to somebody else in the room (text test v44)
 _ASIDE = re.compile(r"^(?:(?:do|does|did|is|are|was|were|can|could|would|will|have|has)n'?t|won'?t) "
                     r"(?:you|he|she|it|they|we|i)$|^(?:tell|ask) it$", re.IGNORECASE)
+# a helm order: "set a course for the kitchen", "shape a course for the living room" (audio test v39)
+_COURSE = re.compile(r"^(?:set|shape|plot|lay|steer) (?:a |your |our )?course (?:for|to)\b", re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
 _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.IGNORECASE)
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
@@ -117,12 +125,12 @@ def classify(clause: str) -> ClauseKind:
     lowered = text.lower()
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
-    if _ASIDE.match(text) or DO_THOSE.match(text):
-        return ClauseKind.STATEMENT
+    if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)):
+        return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
                                                r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered):
         return ClauseKind.REQUEST  # a stop is always a request
-    if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered):
+    if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered) and not LATER.search(lowered):
         return ClauseKind.REQUEST
     if (_CALL_OFF.search(lowered) or _NEGATION.search(_MIND.sub("", lowered)) or LATER.search(lowered)
             or re.match(r"^no\b", lowered)):
@@ -142,7 +150,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
         return ClauseKind.REQUEST
-    if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text):
+    if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text) \
+            or _COURSE.match(text):
         return ClauseKind.REQUEST
     if first in _WH and len(said) > 2 and said[1] in _TELLS:
         return ClauseKind.STATEMENT  # "…, where I think I left my hymn book": a place described, no question
@@ -150,6 +159,7 @@ def classify(clause: str) -> ClauseKind:
         if len(said) <= 2 and first in _WH and (len(said) == 1 or said[1] not in QUESTION_WORDS | _ASKS_WITH):
             return ClauseKind.STATEMENT  # "What... what time... it's so dark": a word searched for, no question
         return ClauseKind.QUESTION
-    if len(said) <= 3 and said[-1] in ("on", "off", "please", "now") and first.split("'")[0] not in _SUBJECTS:
+    if len(said) <= 3 and (said[-1] in ("on", "off", "please", "now") or HASTE.match(said[-1])) \
+            and first.split("'")[0] not in _SUBJECTS:
         return ClauseKind.REQUEST  # a terse command: "projector on", "kitchen, please"
     return ClauseKind.STATEMENT

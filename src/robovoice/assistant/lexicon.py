@@ -25,7 +25,7 @@ FILLER = re.compile(
     re.IGNORECASE,
 )
 # haste said after a request: "Hallway, and quick about it." (a tag; after a bare place it asks for it)
-_HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?sharpish|chop chop|pronto|"
+_HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?(?:sharpish|smartish)|chop chop|pronto|"
           r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
           # … and how to go: "bathroom, please, quietly" (audio test v33)
           r"(?:please,? )?(?:and )?(?:nice and )?(?:quiet(?:ly)?|slow(?:ly)?|careful(?:ly)?|gently|soft(?:ly)?|quickly)"
@@ -56,10 +56,16 @@ IMPERATIVES = frozenset({
     "kill", "gie", "enter",  # "kill the projector"; Scots "gie Clara a call" (give); "enter the kitchen"
     "place", "telephone", "proceed",  # formal: "place a call to …", "proceed to the living room"
     "hit", "dip", "bounce",  # young people's: "hit up Clara", "dip to the hallway"
+    "steer",  # "steer for the bathroom" (text test v48)
 })
 # The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
 # "hold still" said to the robot, not of it ("do you have to stay still?", "the kids won't keep still")
-STOP = re.compile(r"\bstop\b|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b", re.IGNORECASE)
+# A habit to give up ("stop worrying", "stop fussing over me"), said to a person: no stop of the
+# robot ("stop moving", "stop driving" are)
+_HABIT = (r" (?!(?:mov|driv|go|roll|runn|turn|spinn|follow|com|wander|head|travell|walk|creep|edg|trundl)ing\b)"
+          r"(?!(?:every|some|any|no)?thing|(?:r|br|s|dur|morn|even|ceil|k|w|str|spr)ing\b)[a-z]{2,}ing\b")
+HABIT = re.compile(rf"\b(?:stop|quit){_HABIT}", re.IGNORECASE)
+STOP = re.compile(rf"\bstop\b(?!{_HABIT})|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b", re.IGNORECASE)
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
 YOU_DO = re.compile(rf"^you (?:{'|'.join(sorted(IMPERATIVES))})\b", re.IGNORECASE)
