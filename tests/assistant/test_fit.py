@@ -331,3 +331,15 @@ def test_switching_it_off_with_nothing_named_is_the_one_thing_the_robot_switches
     refused = refusal(read_request(text), SPECS["set_projector_power"], {"on": on}, said, VOICE,
                       tools=list(SPECS.values()))
     assert (refused is None) is runs
+
+
+def test_this_or_that_before_a_noun_names_it_and_points_back_to_nothing() -> None:
+    """Text test v49: "Enough talking for today, Anna. Robot, you stop this call …" stopped the
+    robot: "this" counted as a back reference, so every clause was searched, and the statement's
+    "enough" fitted the stop. Before a noun it names the thing; alone or before "off" it points back."""
+    text = "Enough talking for today, Anna, I am tired. Robot, you stop this call and put the projector off."
+    body = refusal(read_request(text), SPECS["stop_robot"], {}, (), VOICE)
+    assert body is not None and body["details"]["reason"] == OTHER
+    assert refusal(read_request(text), SPECS["end_video_call"], {}, (), VOICE) is None
+    said = read_request("The thing that throws pictures on the wall... turn that off.")
+    assert refusal(said, SPECS["set_projector_power"], {"on": False}, (), VOICE) is None

@@ -26,6 +26,17 @@ from robovoice.assistant.reading import ClauseKind, Intent
 
 _SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus", "neighbor": "neighbour"}
 _BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
+# "this" and "that" before a noun name it ("stop this call": no back reference, text test v49);
+# before these, or last, they point back ("turn that off", "this thing")
+_POINTS_ON = frozenset({"thing", "things", "stuff", "one", "on", "off", "up", "down", "out", "in", "back", "for",
+                        "to", "please", "now", "again", "over", "round", "around", "too", "as", "at", "with", "and",
+                        "then", "so", "right", "first", "instead"})
+
+
+def _refers_back(text: str) -> bool:
+    said = words(text)
+    return any(w in _BACK_REFERENCE and (w not in ("this", "that") or i + 1 == len(said) or said[i + 1] in _POINTS_ON)
+               for i, w in enumerate(said))
 
 
 def usual(names: Iterable[str]) -> set[str]:
@@ -97,7 +108,7 @@ def _request_stems(intent: Intent, said: Collection[str],
     clauses = [_stems(_COURTESY.sub("", FILLER.sub("", c.text.strip()))) for c in requests]  # "ok wrap up …"
     # (an ability question's "it" is not looked up: "If Ben rings, could you answer it?" is
     # not a question about ringing him, and the robot's "yes" must be to what it names)
-    if ClauseKind.REQUEST in kinds and any(_BACK_REFERENCE & set(words(c.text)) for c in requests):
+    if ClauseKind.REQUEST in kinds and any(_refers_back(c.text) for c in requests):
         # "the thing that throws pictures on the wall... turn it off": what "it" is was said before
         clauses += [_stems(c.text) for c in intent.clauses]
     if intent.answering:
