@@ -135,6 +135,9 @@ def test_ben_between_a_call_and_a_verb_is_then() -> None:
         "call Anna, then head to the hallway.")
     assert restore("ring Dr. Weber, Ben, switch the projector on.", hint) == (
         "ring Dr. Weber, then switch the projector on.")
+    assert restore("kindly finish this call, and Ben Ring, Dr. Weber, it is time.", hint) == (
+        "kindly finish this call, and then ring Dr. Weber, it is time.")  # audio test v40
+    assert restore_then_after_call("switch it off. And Ben, ring Clara.", hint) == "switch it off. And Ben, ring Clara."
     # a list of names, Ben called himself, no verb after, no call action
     assert restore_then_after_call("call Anna, Ben and Clara.", hint) == "call Anna, Ben and Clara."
     assert restore_then_after_call("call Ben, Ben, go.", hint) == "call Ben, Ben, go."

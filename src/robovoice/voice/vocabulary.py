@@ -155,20 +155,25 @@ def restore_then_call(text: str, hint: str) -> str:
     return re.sub(pattern, lambda m: m[1] + "then call " + m[2], text)
 
 
-# … and "then" after a call as "Ben" ("call Anna, then head to the hallway" heard as "call Anna,
-# Ben, head to the hallway", audio test v39: the call to Anna read as corrected to Ben, and the
-# drive never made). A second name after a call to another, right before a verb of motion or
-# switching, is the order word: one call is made at a time.
+# … and "then" as "Ben": after a call to another ("call Anna, then head to the hallway" heard as
+# "call Anna, Ben, head to the hallway", audio test v39: the call to Anna read as corrected to
+# Ben, and the drive never made), right before a verb of motion or switching, and after "and"
+# right before a call to another ("…, and then ring Doctor Weber" heard as "…, and Ben Ring, Dr.
+# Weber", audio test v40). Said after a comma or an "and", not after a full stop: an aside to a
+# Ben in the room ("Call Anna. Ben, head to the hallway.") stays as said.
 _NEXT_VERB = r"(?=(?i:go|head|drive|come|switch|turn|put|pop|nip|take|get|move|return)\b)"
 
 
 def restore_then_after_call(text: str, hint: str) -> str:
-    """`text` with "call <name>, Ben, <verb>" written "call <name>, then <verb>" (Ben: a name
-    the hint's call action lists, said as "then")."""
+    """`text` with "call <name>, Ben, <verb>" written "call <name>, then <verb>", and ", and Ben
+    ring, <name>" written ", and then ring <name>" (Ben: a name the hint's call action lists,
+    said as "then")."""
     if (who := _callable(hint)) is None or not re.search(r"\bBen\b", hint):
         return text
     pattern = r"(\b(?i:call|ring|phone|video call)\s+(?!Ben\b)" + who + r"),\s+Ben,?\s+" + _NEXT_VERB
-    return re.sub(pattern, r"\1, then ", text)
+    text = re.sub(pattern, r"\1, then ", text)
+    pattern = r"(,\s*(?i:and)\s+)Ben,?\s+((?i:ring|call|phone)),?\s+(?=(?!Ben\b)" + who + ")"
+    return re.sub(pattern, lambda m: m[1] + "then " + m[2].lower() + " ", text)
 
 
 def restore(text: str, hint: str) -> str:
