@@ -909,3 +909,23 @@ def test_suppositions_kindness_steering_and_habits(text: str, steps: tuple[str, 
     """Text test v48's register: a request said as a supposition or a kindness, a helm order,
     a bare place with "smartish", and "stop worrying" said to somebody."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("You go in the kitchen, I come behind you.", ("You go in the kitchen",)),
+    ("Robot, you finish this call now.", ("you finish this call now",)),
+    ("Make the projector on, and then you call Ben.", ("Make the projector on", "you call Ben")),
+    ("You make me laugh.", ()),
+    ("You drive like my late husband.", ()),
+    ("You always go to the kitchen at night.", ()),
+    ("Kindly be going to the bathroom.", ("Kindly be going to the bathroom",)),
+    ("Whoa, hold it right there!", ("hold it right there",)),
+    ("Please disconnect this call now.", ("Please disconnect this call now",)),
+    ("Call Clara, and thereafter go to the front door to receive her.",
+     ("Call Clara", "go to the front door to receive her")),
+    ("Ring Clara, after you put the projector on.", ("put the projector on", "Ring Clara")),
+    ("Ring Ben. I want to talk to him.", ("Ring Ben",)),  # that call again, not a second one
+])
+def test_requests_in_the_present_tense_and_formal_order_words(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v49's register: "you go …" for "go …", "kindly be going", "thereafter"."""
+    assert read_request(text).steps == steps

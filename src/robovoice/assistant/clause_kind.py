@@ -102,6 +102,16 @@ _SEE_OFF = re.compile(r"^see (?:me|us|him|her|them) (?:out|to|off|down|up)\b", r
 # to do: both are said to somebody else in the room (text test v44)
 _ASIDE = re.compile(r"^(?:(?:do|does|did|is|are|was|were|can|could|would|will|have|has)n'?t|won'?t) "
                     r"(?:you|he|she|it|they|we|i)$|^(?:tell|ask) it$", re.IGNORECASE)
+# "You drive in the kitchen", "Robot, you finish this call now": a request in the present
+# tense, as a speaker of another first language says it (text test v49), for the robot's own
+# actions (not "you make me laugh", "you drive like my husband", "you always go there")
+_YOU_NOW = re.compile(r"^you (?:go|drive|come|head|move|roll|ring|call|phone|dial|video|switch|turn|put|return|"
+                      r"cancel|end|hang|pop|nip|finish|stop|make|take|get)\b"
+                      r"(?! (?:me|us|him|her|them|like|so|too|very|really|fast|slow|well|badly|mad|crazy)\b)"
+                      r"(?!.*\b(?:always|never|usually|often|sometimes|every|each|normally|ever|still|whenever|"
+                      r"all the time|yesterday|last)\b)", re.IGNORECASE)
+# "kindly be going to the kitchen" (text test v49)
+_BE_GOING = re.compile(r"^be (?:going|coming|heading|moving|off) (?:to|into|in|through|over|back)\b", re.IGNORECASE)
 # a helm order: "set a course for the kitchen", "shape a course for the living room" (audio test v39)
 _COURSE = re.compile(r"^(?:set|shape|plot|lay|steer) (?:a |your |our )?course (?:for|to)\b", re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
@@ -139,7 +149,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST  # "let's see if you can find your own way back" is to be done (text test v47)
     if asks_ability(text):
         return ClauseKind.ABILITY
-    if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)):
+    if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)) or _YOU_NOW.match(lowered) \
+            or _BE_GOING.match(lowered):
         return ClauseKind.REQUEST  # "could you …"; "first you go to bathroom": a step said to the robot
     said = words(lowered)
     first = said[0]

@@ -280,7 +280,8 @@ _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:
                                r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all)?|to (?:start|begin) with)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
-_AFTER = re.compile(r"^after(?:wards| that| this)?\b[\s,]*", re.IGNORECASE)  # not "after lunch": no request
+# not "after lunch": no request; "thereafter" (text test v49)
+_AFTER = re.compile(r"^(?:after(?:wards| that| this)?|thereafter)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
 _THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."
@@ -295,8 +296,11 @@ _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 
 
 # A request about someone an earlier request named ("…, can you get him on the screen?") asks for that again.
-# (not in what it is for: "put the projector on so I can see her" is a thing of its own)
-_BACK_TO_SOMEONE = re.compile(r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
+# (not in what it is for: "put the projector on so I can see her" is a thing of its own, and so
+# is a drive to a place: "go to the front door to receive her", text test v49)
+_BACK_TO_SOMEONE = re.compile(r"(?!(?:please |kindly |just |now )*(?:go|come|head|drive|pop|nip|move|get|run|hurry)\b"
+                              r"[^,]*\b(?:to|into) (?:the|my|our)\b)"
+                              r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
 
 

@@ -57,6 +57,7 @@ IMPERATIVES = frozenset({
     "place", "telephone", "proceed",  # formal: "place a call to …", "proceed to the living room"
     "hit", "dip", "bounce",  # young people's: "hit up Clara", "dip to the hallway"
     "steer",  # "steer for the bathroom" (text test v48)
+    "disconnect",  # "please disconnect this call now" (audio test v40)
 })
 # The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
 # "hold still" said to the robot, not of it ("do you have to stay still?", "the kids won't keep still")
@@ -65,7 +66,8 @@ IMPERATIVES = frozenset({
 _HABIT = (r" (?!(?:mov|driv|go|roll|runn|turn|spinn|follow|com|wander|head|travell|walk|creep|edg|trundl)ing\b)"
           r"(?!(?:every|some|any|no)?thing|(?:r|br|s|dur|morn|even|ceil|k|w|str|spr)ing\b)[a-z]{2,}ing\b")
 HABIT = re.compile(rf"\b(?:stop|quit){_HABIT}", re.IGNORECASE)
-STOP = re.compile(rf"\bstop\b(?!{_HABIT})|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b", re.IGNORECASE)
+STOP = re.compile(rf"\bstop\b(?!{_HABIT})|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b"
+                  r"|\bhold it (?:right )?there\b", re.IGNORECASE)  # (text test v49)
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
 YOU_DO = re.compile(rf"^you (?:{'|'.join(sorted(IMPERATIVES))})\b", re.IGNORECASE)

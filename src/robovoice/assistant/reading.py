@@ -101,7 +101,8 @@ class Intent:
     @property
     def refers(self) -> bool:
         """A request points at something by a word that names nothing ("go there", "call her")."""
-        return any(c.kind is ClauseKind.REQUEST and _REFERENCE.search(c.text) for c in self.clauses)
+        return any(c.kind is ClauseKind.REQUEST and _REFERENCE.search(_STAY_THERE.sub("", c.text))
+                   for c in self.clauses)
 
     def words(self) -> set[str]:
         return {w for c in self.clauses for w in words(c.text)}
@@ -123,6 +124,9 @@ _TELL_ME = re.compile(
     r"(?:battery|batteries|charge|charged|charging|power level|juice)\b))", re.IGNORECASE)
 _STOPPING = re.compile(r"\b(?:stop|stopping|halt|cancel|turn (?:back|round|around))\b", re.IGNORECASE)
 _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|go on)\b", re.IGNORECASE)
+# "hold it right there", "stop there", "stay just there": where the robot is, no place to look up
+# (text test v49: a drive to the kitchen refused as unclear, and the robot asked which room)
+_STAY_THERE = re.compile(r"\b(?:stop|halt|hold it|stay|wait|freeze)(?: right| just)? there\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
                         re.IGNORECASE)
 # a bare "no" or "sorry" between a request and what puts it right; a request its own words
