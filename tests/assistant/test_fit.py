@@ -343,3 +343,12 @@ def test_this_or_that_before_a_noun_names_it_and_points_back_to_nothing() -> Non
     assert refusal(read_request(text), SPECS["end_video_call"], {}, (), VOICE) is None
     said = read_request("The thing that throws pictures on the wall... turn that off.")
     assert refusal(said, SPECS["set_projector_power"], {"on": False}, (), VOICE) is None
+
+
+def test_a_modal_after_the_thing_names_no_other_tool() -> None:
+    """Text test v50: "the projector can go off now" did not fit the projector: "can", right
+    after it, begins "cancel", as a misheard word may begin what it names."""
+    intent = read_request("Right, the projector can go off now.")
+    assert refusal(intent, SPECS["set_projector_power"], {"on": False}, (), VOICE) is None
+    stop = refusal(read_request("Stop the call now."), SPECS["stop_robot"], {}, (), VOICE)
+    assert stop is not None and stop["details"]["reason"] == OTHER

@@ -170,6 +170,9 @@ def _handles(clause: Sequence[str]) -> bool:
 
 
 _DETERMINERS = frozenset(stem(w) for w in ("the", "that", "this", "your", "my", "a", "an"))
+# a verb's helper after the thing, no name of another ("the projector can go off": "can" is not "cancel")
+_MODALS = frozenset(stem(w) for w in ("can", "could", "may", "might", "must", "should", "will", "would", "shall",
+                                      "is", "was", "has", "had"))
 
 
 def _says_for_it(clause: Sequence[str], phrase: Sequence[str], aimed: Collection[str]) -> bool:
@@ -180,7 +183,7 @@ def _says_for_it(clause: Sequence[str], phrase: Sequence[str], aimed: Collection
         j = i + len(phrase)
         while j < len(clause) and clause[j] in _DETERMINERS:
             j += 1
-        if j >= len(clause) or not _names(clause[j], aimed):
+        if j >= len(clause) or clause[j] in _MODALS or not _names(clause[j], aimed):
             return True
     return False
 
