@@ -929,3 +929,17 @@ def test_suppositions_kindness_steering_and_habits(text: str, steps: tuple[str, 
 def test_requests_in_the_present_tense_and_formal_order_words(text: str, steps: tuple[str, ...]) -> None:
     """Text test v49's register: "you go …" for "go …", "kindly be going", "thereafter"."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Robot, the projector can go off now.", ("the projector can go off now",)),
+    ("The projector can go off later.", ()),
+    ("Put the projector on, after which come to the bedroom.", ("Put the projector on", "come to the bedroom")),
+    ("To the kitchen first, then on to the bathroom.", ("To the kitchen first", "on to the bathroom")),
+    ("To the kitchen, that's where she went.", ()),
+    ("Projector off, followed by bed for you on the charger.", ("Projector off", "bed for you on the charger")),
+    ("Go to the kitchen, and after lunch the bedroom.", ("Go to the kitchen",)),  # after lunch: later
+])
+def test_things_that_can_go_off_and_order_words_of_a_list(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v50's register: jobs listed in one breath, "after which", "followed by"."""
+    assert read_request(text).steps == steps

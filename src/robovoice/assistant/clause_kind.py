@@ -112,6 +112,14 @@ _YOU_NOW = re.compile(r"^you (?:go|drive|come|head|move|roll|ring|call|phone|dia
                       r"all the time|yesterday|last)\b)", re.IGNORECASE)
 # "kindly be going to the kitchen" (text test v49)
 _BE_GOING = re.compile(r"^be (?:going|coming|heading|moving|off) (?:to|into|in|through|over|back)\b", re.IGNORECASE)
+# a thing to be switched, said as what may happen to it: "the projector can go off now" (text v50)
+_CAN_GO = re.compile(r"^(?:the|that|this|your|my) \w+ (?:can|could|may|should|ought to) "
+                     r"(?:go|be (?:switched|turned|put)|come|get) (?:on|off)\b", re.IGNORECASE)
+# a way to a place, said alone: "to the front door first", "from there on to the kitchen" (text test v50)
+_TO_PLACE = re.compile(r"^(?=.*\b(?:first|next|then|now|please|last|again|from there|after that|back|straight|"
+                       r"on to|onto)\b)(?:(?:from there|then|next|first|after that),? )?"
+                       r"(?:(?:on|off|back|over|up|down|through|round|straight) )*(?:on)?to (?:the|my|your) \w+"
+                       r"(?: \w+)?(?: (?:first|next|then|now|please|last|again|after that))*$", re.IGNORECASE)
 # a helm order: "set a course for the kitchen", "shape a course for the living room" (audio test v39)
 _COURSE = re.compile(r"^(?:set|shape|plot|lay|steer) (?:a |your |our )?course (?:for|to)\b", re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
@@ -162,7 +170,7 @@ def classify(clause: str) -> ClauseKind:
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
         return ClauseKind.REQUEST
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text) \
-            or _COURSE.match(text):
+            or _COURSE.match(text) or _CAN_GO.match(text) or _TO_PLACE.match(text):
         return ClauseKind.REQUEST
     if first in _WH and len(said) > 2 and said[1] in _TELLS:
         return ClauseKind.STATEMENT  # "…, where I think I left my hymn book": a place described, no question
