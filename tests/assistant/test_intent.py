@@ -939,6 +939,8 @@ def test_requests_in_the_present_tense_and_formal_order_words(text: str, steps: 
     ("To the kitchen, that's where she went.", ()),
     ("Projector off, followed by bed for you on the charger.", ("Projector off", "bed for you on the charger")),
     ("Go to the kitchen, and after lunch the bedroom.", ("Go to the kitchen",)),  # after lunch: later
+    ("Turn the projector off and straight after go to your dock.", ("Turn the projector off", "go to your dock")),
+    ("Go to the kitchen, and straight after lunch ring Ben.", ("Go to the kitchen",)),  # after lunch: later
 ])
 def test_things_that_can_go_off_and_order_words_of_a_list(text: str, steps: tuple[str, ...]) -> None:
     """Text test v50's register: jobs listed in one breath, "after which", "followed by"."""

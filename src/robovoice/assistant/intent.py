@@ -114,7 +114,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                     and clauses[-1].kind is ClauseKind.REQUEST:
                 part = bare = rest  # "Projector off, followed by bed for you on the charger": what follows
                 kind = ClauseKind.REQUEST  # a thing named, asked next
-            elif rest and fragment(rest) and after.group(0).strip(" ,").lower() != "after":
+            elif rest and fragment(rest) and after.group(0).strip(" ,").lower().split()[-1] != "after":
                 part = bare = rest  # "…, after which the kitchen": the next step's words
         if _NAMED_IT.match(bare) and len(clauses) > 1 and clauses[-1].kind is ClauseKind.REQUEST \
                 and fragment(clauses[-1].text):  # "Put the picture thing on the wall. The projector, that's it."
@@ -286,9 +286,10 @@ _ORDERED_FRAGMENT = re.compile(r"^(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:
                                r"|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all)?|to (?:start|begin) with)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
-# not "after lunch": no request; "thereafter" (text test v49), "after which", "followed by" (v50)
-_AFTER = re.compile(r"^(?:after(?:wards| that| this| which)?|thereafter|followed by)\b(?!\s+you\b)[\s,]*",
-                    re.IGNORECASE)
+# not "after lunch": no request; "thereafter" (text test v49), "after which", "followed by" (v50),
+# "straight after" (audio v41)
+_AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
+                    r"|followed by)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
 _THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."
