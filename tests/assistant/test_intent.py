@@ -945,3 +945,20 @@ def test_requests_in_the_present_tense_and_formal_order_words(text: str, steps: 
 def test_things_that_can_go_off_and_order_words_of_a_list(text: str, steps: tuple[str, ...]) -> None:
     """Text test v50's register: jobs listed in one breath, "after which", "followed by"."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Go to the kitchen and put the projector on when you're in.",
+     ("Go to the kitchen", "put the projector on when you're in")),
+    ("Put the projector on nice and big, I want to see Anna's photos.", ("Put the projector on nice-and-big",)),
+    ("Put the projector on, I want to see Anna.", ("Put the projector on", "I want to see Anna")),  # a call asked
+    ("First things first: go to the hallway, then ring Clara.", ("go to the hallway", "ring Clara")),
+    ("Ring him, but come into the living room before you do.", ("come into the living room", "Ring him")),
+    ("Leave that projector shining where it is.", ()),
+    ("Look at it away down the hallway!", ()),  # the robot, talked about
+    ("Look at it and tell me what it is.", ("tell me what it is",)),
+])
+def test_dialect_talk_about_the_robot_and_steps_said_before_you_do(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v51's register: "when you're in", "nice and big", "first things first",
+    "… before you do", "leave it shining", "look at it away down the hall"."""
+    assert read_request(text).steps == steps

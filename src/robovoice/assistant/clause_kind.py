@@ -33,7 +33,8 @@ _NEGATION = re.compile(
     r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
     r"hold off|rather not|rather you didn'?t|no,|gonnae no|"
-    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|running|going|on|off|in peace|for now|for the moment"
+    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|where (?:it|they) (?:is|are)|running|going|shining|"
+    r"burning|glowing|on|off|in peace|for now|for the moment"
     r"|for the time being)|^forget (?:about )?(?:the|my|your|going|calling|ringing|phoning)\b|"
     r"let (?:it|that|them) be|don'?t touch)\b"
     r"|\bnot\s*$|^not\b"  # "…, not Ben"
@@ -101,7 +102,9 @@ _SEE_OFF = re.compile(r"^see (?:me|us|him|her|them) (?:out|to|off|down|up)\b", r
 # A question tag on its own ("Don't you, Harold?") and a bare "tell it" (the robot) say nothing
 # to do: both are said to somebody else in the room (text test v44)
 _ASIDE = re.compile(r"^(?:(?:do|does|did|is|are|was|were|can|could|would|will|have|has)n'?t|won'?t) "
-                    r"(?:you|he|she|it|they|we|i)$|^(?:tell|ask) it$", re.IGNORECASE)
+                    r"(?:you|he|she|it|they|we|i)$|^(?:tell|ask) it$"
+                    # "look at it away down the hallway": the robot, talked about (text test v51)
+                    r"|^(?:look|see) at (?:it|him|her|that thing|the robot|the wee thing)\b(?! and\b)", re.IGNORECASE)
 # "You drive in the kitchen", "Robot, you finish this call now": a request in the present
 # tense, as a speaker of another first language says it (text test v49), for the robot's own
 # actions (not "you make me laugh", "you drive like my husband", "you always go there")

@@ -28,6 +28,9 @@ _TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
 
 
 # "go and charge", "come and find me": one request whose verb follows the "and", not two
+# "nice and big", "good and loud": one manner, not two steps (text test v51)
+_NICE_AND = re.compile(r"\b(nice|good|lovely)\s+and\s+(?=(?:big|bright|loud|large|clear|close|wide|sharp)\b)",
+                       re.IGNORECASE)
 _GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
 
 
@@ -58,6 +61,6 @@ _ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+
 
 def split_clauses(text: str) -> list[str]:
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
-    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
+    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", text))))
     parts = [p for p in (_DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))) for p in _SPLIT.split(text)) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]

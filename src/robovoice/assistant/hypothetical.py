@@ -96,7 +96,7 @@ COURTESY = re.compile(
     re.IGNORECASE)
 # … and this is the order of steps, not a condition ("go to the door and when you get there, …").
 ON_ARRIVAL = re.compile(r"^(?:when|once) you(?:'re| are)? (?:(?:get|arrive)\w*(?: (?:there|in there|back|in|home))?"
-                        r"|there|in there|back)\b[\s,]*", re.IGNORECASE)
+                        r"|there|in there|back|in$)\b[\s,]*", re.IGNORECASE)  # "… when you're in" (text test v51)
 # … these say what to do first ("once you've checked your battery, come here").
 # (not "when you have a moment", "when you've got a minute": courtesy)
 SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| have) "
