@@ -962,3 +962,17 @@ def test_dialect_talk_about_the_robot_and_steps_said_before_you_do(text: str, st
     """Text test v51's register: "when you're in", "nice and big", "first things first",
     "… before you do", "leave it shining", "look at it away down the hall"."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("After his lunch you can take yourself to the bathroom, but not before.", ()),
+    ("After it has lunch, you can take yourself to the bathroom.", ()),  # misheard, still after lunch
+    ("Go to the kitchen, but not yet.", ()),
+    ("Ring Ben after her lunch.", ()),
+    ("Stop stop talking, you can end the call.", ("you can end the call",)),
+    ("Stop, stop!", ("Stop",)),
+])
+def test_a_time_held_to_and_a_habit_said_twice(text: str, steps: tuple[str, ...]) -> None:
+    """Audio test v42: "after his lunch …, but not before" heard as "after it has lunch, …"
+    drove to the bathroom; "that's us done talking" heard as "stop stop talking" stopped the robot."""
+    assert read_request(text).steps == steps

@@ -138,6 +138,7 @@ def test_ben_between_a_call_and_a_verb_is_then() -> None:
     assert restore("kindly finish this call, and Ben Ring, Dr. Weber, it is time.", hint) == (
         "kindly finish this call, and then ring Dr. Weber, it is time.")  # audio test v40
     assert restore_then_after_call("switch it off. And Ben, ring Clara.", hint) == "switch it off. And Ben, ring Clara."
+    assert restore("bring our Anna, then put the projector on.", hint) == "ring our Anna, then put the projector on."
     # a list of names, Ben called himself, no verb after, no call action
     assert restore_then_after_call("call Anna, Ben and Clara.", hint) == "call Anna, Ben and Clara."
     assert restore_then_after_call("call Ben, Ben, go.", hint) == "call Ben, Ben, go."

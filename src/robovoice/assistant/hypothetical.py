@@ -83,7 +83,11 @@ PAST_WHEN = re.compile(r"^when (?:i|he|she|we|they|it|(?:the|my|our|his|her) \w+
 # … and so is something else happening first, said before anything is asked: "once my
 # programme's finished, …", "as soon as Ben's here, …" (not the robot's own step, "once you've
 # …"; after a request it is that request's outcome: "call Ben, and once he's on, …")
-EVENT_FIRST = re.compile(r"^(?:once|as soon as) (?!(?:you|ye|again|more|upon|that|this|it)\b)", re.IGNORECASE)
+EVENT_FIRST = re.compile(r"^(?:once|as soon as) (?!(?:you|ye|again|more|upon|that|this|it)\b)"
+                         # "after he's had his lunch, …", "after it has lunch, …" (audio test v42)
+                         r"|^after (?:he|she|it|they|we|i|his|her|my|our|their)(?:'s| has| have| had| is)?\b"
+                         r"(?:(?! you\b).)*\b(?:lunch|dinner|breakfast|tea|supper|nap|rest|bath)\b",
+                         re.IGNORECASE)
 # A moment to spare: courtesy, never a step to do first ("when you've got a mo, …").
 _A_MOMENT = r"(?:a|the) (?:moment|minute|second|sec|mo|chance)\b"
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …

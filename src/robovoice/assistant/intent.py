@@ -262,6 +262,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             front = None
             continue
         clauses.append(Clause(part, kind))
+    if len(clauses) > 1 and clauses[-1].kind is ClauseKind.NEGATED and _NOT_BEFORE.match(clauses[-1].text.strip()) \
+            and clauses[-2].kind is ClauseKind.REQUEST:  # "…, you can go to the bathroom, but not before"
+        clauses[-2] = Clause(clauses[-2].text, ClauseKind.NEGATED)
     if condition and conditioned is not None:  # a condition after the request, nothing after it to apply to:
         clauses[conditioned] = Clause(clauses[conditioned].text, ClauseKind.ABILITY)  # "…, if I had a fall?"
     if any(JUST_ASKING.search(c.text) for c in clauses):  # "Out of interest, can you …?"
@@ -343,6 +346,8 @@ def _arrival_first(parts: list[str]) -> list[str]:
 
 # "…, but come into the living room before you do": before the request said just before (text test v51)
 _BEFORE_YOU_DO_IT = re.compile(r"\s+before you do(?: (?:it|that|so))?\s*$", re.IGNORECASE)
+# a time said before, held to (audio test v42: "after his lunch you can …, but not before")
+_NOT_BEFORE = re.compile(r"^(?:but )?(?:not (?:before|until then|till then|yet)|no sooner)[\s.!]*$", re.IGNORECASE)
 _ACTUALLY = re.compile(r"^\s*actually\b[\s,]*", re.IGNORECASE)
 _ONLY_THIS = re.compile(r"^(?:just|only)\s+(?!(?:a|one) (?:sec|second|minute|moment|mo)\b)", re.IGNORECASE)
 

@@ -42,7 +42,7 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
 # Putting a request off.
 LATER = re.compile(
     r"\b(?:later|tomorrow|tonight|this evening|next week|one day|some day|someday|in an? (?:hour|minute|while)|"
-    r"in \w+ (?:hours|minutes)|after (?:lunch|dinner|breakfast|tea|supper)|until)\b",
+    r"in \w+ (?:hours|minutes)|after (?:(?:his|her|my|our|your|their) )?(?:lunch|dinner|breakfast|tea|supper)|until)\b",
     re.IGNORECASE,
 )
 
@@ -66,7 +66,8 @@ IMPERATIVES = frozenset({
 _HABIT = (r" (?!(?:mov|driv|go|roll|runn|turn|spinn|follow|com|wander|head|travell|walk|creep|edg|trundl)ing\b)"
           r"(?!(?:every|some|any|no)?thing|(?:r|br|s|dur|morn|even|ceil|k|w|str|spr)ing\b)[a-z]{2,}ing\b")
 HABIT = re.compile(rf"\b(?:stop|quit){_HABIT}", re.IGNORECASE)
-STOP = re.compile(rf"\bstop\b(?!{_HABIT})|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b"
+# ("stop stop talking", as a misheard "that's us done talking" was heard: audio test v42)
+STOP = re.compile(rf"\bstop\b(?!(?:,? stop)*{_HABIT})|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b"
                   r"|\bhold it (?:right )?there\b", re.IGNORECASE)  # (text test v49)
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)

@@ -140,7 +140,7 @@ def restore_ring(text: str, hint: str) -> str:
     <name> is one of the names it lists, at the start of a clause and at the end of one."""
     if (who := _callable(hint)) is None:
         return text
-    pattern = _BEFORE_BRING + r"([Bb])ring(\s+" + who + ")" + _AFTER_NAME
+    pattern = _BEFORE_BRING + r"([Bb])ring(\s+(?:(?i:our|my)\s+)?" + who + ")" + _AFTER_NAME  # "bring our Anna"
     return re.sub(pattern, lambda m: m[1] + ("R" if m[2] == "B" else "r") + "ing" + m[3], text)
 
 
