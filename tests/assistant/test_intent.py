@@ -971,6 +971,7 @@ def test_dialect_talk_about_the_robot_and_steps_said_before_you_do(text: str, st
     ("Ring Ben after her lunch.", ()),
     ("Stop stop talking, you can end the call.", ("you can end the call",)),
     ("Stop, stop!", ("Stop",)),
+    ("Stop there, then turn round and go back to your dock.", ("Stop there", "go back to your dock")),
 ])
 def test_a_time_held_to_and_a_habit_said_twice(text: str, steps: tuple[str, ...]) -> None:
     """Audio test v42: "after his lunch …, but not before" heard as "after it has lunch, …"

@@ -28,6 +28,9 @@ _TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
 
 
 # "go and charge", "come and find me": one request whose verb follows the "and", not two
+# "turn round and go back to your dock": the way it goes, no call-off of its own (text tests v24, v25:
+# offered the cancel for "turn round", the model cancelled nothing and never drove)
+_TURN_AND = re.compile(r"\bturn (?:round|around|back)\s+and\s+(?=(?:go|head|come|drive|make|get)\b)", re.IGNORECASE)
 # "nice and big", "good and loud": one manner, not two steps (text test v51)
 _NICE_AND = re.compile(r"\b(nice|good|lovely)\s+and\s+(?=(?:big|bright|loud|large|clear|close|wide|sharp)\b)",
                        re.IGNORECASE)
@@ -61,6 +64,7 @@ _ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+
 
 def split_clauses(text: str) -> list[str]:
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
-    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", text))))
+    text = _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", text))
+    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
     parts = [p for p in (_DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))) for p in _SPLIT.split(text)) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]
