@@ -289,8 +289,8 @@ _ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of
                                r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
-# not "after lunch": no request; "thereafter" (text test v49), "after which", "followed by" (v50),
-# "straight after" (audio v41)
+_SOMEONES = re.compile(r"^\s+(?:[A-Z]\w+|my \w+|the \w+)'s\b")  # "… see Anna's recipe": hers, not her
+# not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41)
 _AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
                     r"|followed by)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
@@ -398,6 +398,3 @@ def _reason(bare: str, clauses: list[Clause]) -> bool:
     # "…, I want to see Anna's scone recipe": a thing of Anna's, not Anna (text test v51)
     return (plan is not None and (plan.group(1).lower() not in ASKING_VERBS or bool(_SOMEONES.match(bare[plan.end():])))
             and any(c.kind is ClauseKind.REQUEST for c in clauses))
-
-
-_SOMEONES = re.compile(r"^\s+(?:[A-Z]\w+|my \w+|the \w+)'s\b")
