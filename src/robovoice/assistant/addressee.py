@@ -7,7 +7,16 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import FILLER, IMPERATIVES, QUESTION_WORDS, RELATIONS, STOP, TAG, fragment
+from robovoice.assistant.lexicon import (
+    FILLER,
+    IMPERATIVES,
+    QUESTION_WORDS,
+    RELATIONS,
+    ROBOT_ACTIONS,
+    STOP,
+    TAG,
+    fragment,
+)
 
 # Sentences; not at a title's full stop ("Dr. Weber").
 _SENTENCE = re.compile(r"(?<!\bDr\.)(?<!\bMr\.)(?<!\bMrs\.)(?<!\bMs\.)(?<!\bSt\.)(?<=[.!?])\s+")
@@ -99,8 +108,7 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
 
 # "Robot, you ring Anna": after the robot's name, a "you" before a request names who is to do it
 # (not in the wake phrase, nor before a verb that also tells how the robot is: "you look tired")
-_YOU_DO = re.compile(r"(?<!hey )(?<!hi )\b((?:robot|jarvis),?\s+)you\s+(?=(?:go|drive|head|come|ring|call|phone|dial|"
-                     r"video|switch|turn|put|return|cancel|end|hang|pop|nip)\b)", re.IGNORECASE)
+_YOU_DO = re.compile(rf"(?<!hey )(?<!hi )\b((?:robot|jarvis),?\s+)you\s+(?=(?:{ROBOT_ACTIONS})\b)", re.IGNORECASE)
 
 
 def set_aside(text: str) -> tuple[str, tuple[str, ...]]:

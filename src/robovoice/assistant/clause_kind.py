@@ -22,6 +22,7 @@ from robovoice.assistant.lexicon import (
     NOT_A_VERB,
     QUESTION_WORDS,
     RHETORICAL,
+    ROBOT_ACTIONS,
     STOP,
     WANTED_THERE,
     YOU_DO,
@@ -108,8 +109,7 @@ _ASIDE = re.compile(r"^(?:(?:do|does|did|is|are|was|were|can|could|would|will|ha
 # "You drive in the kitchen", "Robot, you finish this call now": a request in the present
 # tense, as a speaker of another first language says it (text test v49), for the robot's own
 # actions (not "you make me laugh", "you drive like my husband", "you always go there")
-_YOU_NOW = re.compile(r"^you (?:go|drive|come|head|move|roll|ring|call|phone|dial|video|switch|turn|put|return|"
-                      r"cancel|end|hang|pop|nip|finish|stop|make|take|get)\b"
+_YOU_NOW = re.compile(rf"^you (?:{ROBOT_ACTIONS}|move|roll|finish|stop|make|take|get)\b"
                       r"(?! (?:me|us|him|her|them|like|so|too|very|really|fast|slow|well|badly|mad|crazy)\b)"
                       r"(?!.*\b(?:always|never|usually|often|sometimes|every|each|normally|ever|still|whenever|"
                       r"all the time|yesterday|last)\b)", re.IGNORECASE)

@@ -104,17 +104,16 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if kind is ClauseKind.ABILITY and asks_ever(part, text):
             kind = classify(re.sub(r"\bever\s+", "", part, count=1))  # "would you ever …, for me?"
         if (after := _AFTER.match(bare)) is not None:
-            rest = bare[after.end():]
+            rest, order = bare[after.end():], after.group(0).strip(" ,").lower()
             if not rest and clauses:
                 continue  # "…, and after, the bedroom": an order word, as "then" is
             if rest and classify(rest) is ClauseKind.REQUEST:
                 part = bare = rest  # "…, and after let's go to the kitchen": the next step
                 kind = ClauseKind.REQUEST
-            elif rest and after.group(0).lower().startswith("followed") and clauses \
-                    and clauses[-1].kind is ClauseKind.REQUEST:
+            elif rest and order == "followed by" and clauses and clauses[-1].kind is ClauseKind.REQUEST:
                 part = bare = rest  # "Projector off, followed by bed for you on the charger": what follows
                 kind = ClauseKind.REQUEST  # a thing named, asked next
-            elif rest and fragment(rest) and after.group(0).strip(" ,").lower().split()[-1] != "after":
+            elif rest and fragment(rest) and not order.endswith("after"):
                 part = bare = rest  # "…, after which the kitchen": the next step's words
         if _NAMED_IT.match(bare) and len(clauses) > 1 and clauses[-1].kind is ClauseKind.REQUEST \
                 and fragment(clauses[-1].text):  # "Put the picture thing on the wall. The projector, that's it."
@@ -333,7 +332,7 @@ def _arrival_first(parts: list[str]) -> list[str]:
     out: list[str] = []
     for part in parts:
         if (first := _BEFORE_YOU_DO_IT.search(part)) and out and \
-                classify(part[:first.start()]) is ClauseKind.REQUEST is classify(out[-1]):
+                classify(part[:first.start()]) is ClauseKind.REQUEST and classify(out[-1]) is ClauseKind.REQUEST:
             out.insert(len(out) - 1, part[:first.start()])  # "ring him, but come here before you do"
             continue
         late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part)

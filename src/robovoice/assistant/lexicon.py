@@ -69,6 +69,9 @@ HABIT = re.compile(rf"\b(?:stop|quit){_HABIT}", re.IGNORECASE)
 # ("stop stop talking", as a misheard "that's us done talking" was heard: audio test v42)
 STOP = re.compile(rf"\bstop\b(?!(?:,? stop)*{_HABIT})|(?<![\w'] )\b(?:hold|keep|stay|stand) (?:still|stock-still)\b"
                   r"|\bhold it (?:right )?there\b", re.IGNORECASE)  # (text test v49)
+# The robot's own actions, as verbs after "you": "Robot, you ring Anna" (addressee), "you go in
+# the kitchen" (clause_kind)
+ROBOT_ACTIONS = "go|drive|head|come|ring|call|phone|dial|video|switch|turn|put|return|cancel|end|hang|pop|nip"
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
 YOU_DO = re.compile(rf"^you (?:{'|'.join(sorted(IMPERATIVES))})\b", re.IGNORECASE)
