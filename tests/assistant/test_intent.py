@@ -977,3 +977,27 @@ def test_a_time_held_to_and_a_habit_said_twice(text: str, steps: tuple[str, ...]
     """Audio test v42: "after his lunch …, but not before" heard as "after it has lunch, …"
     drove to the bathroom; "that's us done talking" heard as "stop stop talking" stopped the robot."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Go to the bath... no, no. Don't. Stay where you are.", ()),  # no place corrected to
+    ("Go to the hallway and back every evening, that's what the nurse said.", ()),  # a habit
+    ("Walk to the kitchen and back tomorrow.", ()),  # the time of the whole trip
+    ("Walk to the kitchen and back, please.", ("Walk to the kitchen", "back")),
+    ("Look at it go! Straight down the hallway.", ()),  # the robot, watched
+    ("Look at it go. Now come to the kitchen.", ("Now come to the kitchen",)),
+    ("Mum's asking for Clara, if you'd ring her for us.", ("if you'd ring her for us",)),
+    ("If you could switch the projector off, that'd be lovely.", ("If you could switch the projector off",)),
+    ("If you'd been here you'd have laughed.", ()),
+    ("Gran wants that projector off, it hurts her eyes.", ("Gran wants that projector off",)),
+    ("She says the kitchen first, then the hallway.", ("She says the kitchen first", "the hallway")),
+    ("He says the kitchen is far too cold.", ()),
+    ("I reckon it's time you rang Ben.", ("I reckon it's time you rang Ben",)),
+    ("It's time for my tablets.", ()),
+])
+def test_habits_watching_the_robot_and_requests_told_on(text: str, steps: tuple[str, ...]) -> None:
+    """Text tests v52 and v53: a doctor's "walk to the front door and back every morning" drove
+    there, "Look at him go. Off to the bedroom …" drove, "Stay put" after a "no" stopped the robot;
+    "if you'd get her on a video call", "he wants the projector on first", "he says the bathroom
+    first" and "it's time we put a call through" were read as talk."""
+    assert read_request(text).steps == steps

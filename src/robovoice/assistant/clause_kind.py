@@ -59,6 +59,8 @@ _POLITE = re.compile(
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
     r"^i(?:'m| am| was)? wonder(?:ing|ed)? (?:if|whether) you\b|^do you think you could\b|^if you (?:could|would)\b|"
+    # "…, if you'd get her on a video call for him" (text test v53); not "if you'd been / gone / seen …"
+    r"^if you'd (?!(?:been|had|gone|seen|done|got|told|said|left|made|taken|heard|known|\w+ed)\b)\w+|"
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
     r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
     # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
@@ -67,6 +69,15 @@ _POLITE = re.compile(
     # "she wants you in the bedroom" (text test v44, audio test v35)
     r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|your|our) \w+) (?:wants|needs|would like|'d like) you "
     r"(?:to\b|(?:in|at|by) the\b)|"
+    # … or the thing as they want it: "he wants the projector on first" (text test v53)
+    r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) (?:wants|needs|would like|'d like) "
+    r"(?:the|that|his|her|your) \w+ "
+    r"(?:on|off)\b|"
+    # … or the place first, told on for someone: "he says the bathroom first, then …" (text test v53)
+    r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) (?:says|said|wants) "
+    r"(?:the|my|your) \w+(?: \w+)? (?:first|next|now|please)$|"
+    # "I think it's time we put a call through to Dr. Weber" (text test v52); not "it's time for lunch"
+    r"^(?:(?:so|well|and) )?(?:(?:i think|i reckon|i'd say) )?it'?s (?:about |high )?time (?:we|you) (?!were\b)\w+|"
     r"^might you\b|^(?:is there )?any chance (?:you(?:'d| could| would| can| might| will)?|of you)\b|"
     r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"

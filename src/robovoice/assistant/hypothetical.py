@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import FILLER, NOT_GENERIC, words
+from robovoice.assistant.lexicon import FILLER, IMPERATIVES, NOT_GENERIC, words
 
 _ABILITY = re.compile(
     r"\b(?:are you (?:able|capable)|were you able|is it possible for you|would it be possible|"
@@ -71,7 +71,9 @@ def asks_ability(text: str) -> bool:
 
 # A condition before a request: what to do if or when something happens, not now.
 CONDITION = re.compile(  # (not a question: "when will you be charged?"); "supposing I fell, …" too
-    r"^(?:if|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case|"
+    # (not "if you could / would / you'd ring Ben for me": a request, said politely)
+    rf"^(?:if(?! you(?:'d| could| would) (?:{'|'.join(sorted(IMPERATIVES))})\b)"
+    r"|when(?!\s+(?:will|did|do|does|is|are|was|were|can|could|would|shall|have|has)\b)|whenever|in case|"
     r"suppos(?:e|ing)|imagine|what if(?! you\b)|let'?s say|say (?:i|we)\b)\b",  # ("what if you rang Ben?": asked)
     re.IGNORECASE)
 # … but a "when" with a verb in the past tells what happened ("when the lights went out I

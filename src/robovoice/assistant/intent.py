@@ -27,7 +27,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.addressee import set_aside
-from robovoice.assistant.amend import amend, go_list, named_back, repeats
+from robovoice.assistant.amend import amend, named_back, repeats
 from robovoice.assistant.clause_kind import SEE_IF, classify
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
@@ -68,6 +68,7 @@ from robovoice.assistant.lexicon import (
     unfinished,
     words,
 )
+from robovoice.assistant.neighbours import settle
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
 
 
@@ -273,7 +274,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                    and (asked or asked_as_question(c.text)) else c for c in clauses]
     if clauses and clauses[-1].kind is ClauseKind.REQUEST and unfinished(clauses[-1].text):
         clauses[-1] = Clause(clauses[-1].text, ClauseKind.UNFINISHED)  # the person was cut off
-    return Intent((*go_list(clauses, text), *(Clause(said, ClauseKind.STATEMENT) for said in to_others)), answering)
+    return Intent((*settle(clauses, text), *(Clause(said, ClauseKind.STATEMENT) for said in to_others)), answering)
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)

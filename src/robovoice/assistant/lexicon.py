@@ -197,12 +197,18 @@ DO_THOSE = re.compile(r"^(?:do|carry out|follow) (?:those|these|them|both|all (?
                       re.IGNORECASE)
 
 
+# "stay put", "stay where you are": a verb of keeping as things are, never a verbless continuation ("Go to
+# the kit... no. No, don't. Stay put." read "stay put" as the place corrected to: text test v53)
+_HOLD_STILL = re.compile(r"^(?:stay|remain)\b")
+
+
 def fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben" (not a hedge: "I guess")."""
     text = FILLER.sub("", part.strip()).strip().lower()
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well|with you)$", "", text)  # "back to bed with you"
     text = _PURPOSE.sub(r"\1", text)  # what it is for: "the front door to see me out"
-    return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and not DO_THOSE.match(text) and bool(re.match(
+    return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and not DO_THOSE.match(text) \
+        and not _HOLD_STILL.match(text) and bool(re.match(
         r"^(?:back |on |over |then |next )?(?:to |into |onto |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$",
         text))
 
