@@ -10,6 +10,7 @@ from robovoice.voice.vocabulary import (
     command_hint,
     restore,
     restore_end,
+    restore_hesitation,
     restore_ring,
     restore_then_after_call,
     restore_then_call,
@@ -145,3 +146,13 @@ def test_ben_between_a_call_and_a_verb_is_then() -> None:
     assert restore_then_after_call("call Anna, Ben, please.", hint) == "call Anna, Ben, please."
     assert restore_then_after_call("call Anna, Ben, head off.", command_hint("hey jarvis", [NAVIGATE])) == (
         "call Anna, Ben, head off.")
+
+
+def test_an_opening_or_before_a_verb_is_a_hesitation() -> None:
+    """Audio test v44: "er, go to the kitchen, would you" heard as "or go to the kitchen, would
+    you?" read as talk."""
+    assert restore_hesitation("or go to the kitchen, would you?") == "go to the kitchen, would you?"
+    assert restore_hesitation("Or, ring Ben.") == "ring Ben."
+    for kept in ("Or so they say.", "Oregon is nice.", "or the bedroom", "Go there, or ring Ben."):
+        assert restore_hesitation(kept) == kept
+    assert restore("or go to the kitchen.", "") == "go to the kitchen."

@@ -176,8 +176,21 @@ def restore_then_after_call(text: str, hint: str) -> str:
     return re.sub(pattern, lambda m: m[1] + "then " + m[2].lower() + " ", text)
 
 
+# A hesitation before the command ("er, go to the kitchen, would you") heard as "or go to the kitchen,
+# would you?" (audio test v44): an utterance does not open with "or" before a verb; the reading took the
+# request for talk. Only at the very start, before one of the request verbs.
+_OPENING_OR = re.compile(r"^\s*or\b[\s,]*" + _NEXT_VERB.replace("take|get", "take|get|ring|call|phone|end|stop"),
+                         re.IGNORECASE)
+
+
+def restore_hesitation(text: str) -> str:
+    """`text` without an opening "or" right before a verb of the robot's (a heard "er")."""
+    return _OPENING_OR.sub("", text)
+
+
 def restore(text: str, hint: str) -> str:
     """`text` with the mishearings above put right, the title first ("bring dock to Weber" is
     "bring Dr. Weber", then "ring Dr. Weber")."""
-    text = restore_then_call(restore_ring(restore_end(restore_titles(text, hint), hint), hint), hint)
+    text = restore_then_call(restore_ring(restore_end(restore_titles(restore_hesitation(text), hint), hint), hint),
+                             hint)
     return restore_then_after_call(text, hint)
