@@ -1,10 +1,13 @@
 """What a change to the reading changes: every eval text read before and after, and the differences.
 
-The check before acting (`assistant/intent.py`) is plain code over words, so a rule written for
-one phrasing can change how others read. This reads every text of every case file under
-tests/data/eval (and the spoken texts of the clip specs, the wake phrase taken off) with the
-`robovoice` on the path, and writes one line per text; `compare` lists the texts whose reading
-differs between two such dumps, with their case ids, so each change can be checked by hand.
+The check before acting (`assistant/intent.py`, `assistant/gate.py`) is plain code over words, so a
+rule written for one phrasing can change how others read. This reads every text of every case file
+under tests/data/eval (and the spoken texts of the clip specs, the wake phrase taken off) with the
+`robovoice` on the path, and writes one entry per text: its clauses, its steps, and the gate's
+verdict on each of the sim robot's actuation calls (every place, every contact, the projector on
+and off, the dock, the stop, the cancel, the end of a call) as if the model had made it.
+`compare` lists the texts whose reading or verdicts differ between two such dumps, with their case
+ids, so each change can be checked by hand.
 
     PYTHONPATH=<old worktree>/src python scripts/reading_diff.py dump old.json
     python scripts/reading_diff.py dump new.json
@@ -17,6 +20,7 @@ import argparse
 import json
 import re
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parent.parent
 _WAKE = re.compile(r"^\s*hey,? jarvis[,.!]?\s*", re.IGNORECASE)
@@ -37,14 +41,37 @@ def texts() -> dict[str, list[str]]:
     return found
 
 
+CALLS = [("navigate_to", {"target": p}) for p in ("kitchen", "living room", "bedroom", "bathroom", "hallway",
+                                                 "front door", "charging dock")] + \
+        [("start_video_call", {"contact": c}) for c in ("Anna", "Ben", "Clara", "Dr. Weber")] + \
+        [("set_projector_power", {"on": True}), ("set_projector_power", {"on": False}), ("return_to_dock", {}),
+         ("stop_robot", {}), ("cancel_navigation", {}), ("end_video_call", {})]
+
+
+def _sim_tools() -> tuple[dict[str, Any], dict[str, Any]]:
+    from robovoice.llm.base import ToolSpec
+    from robovoice.manifest.loader import load_manifest_dir
+
+    loaded = load_manifest_dir(ROOT / "src" / "robovoice" / "sim" / "manifests")
+    tools = [tool for item in loaded.manifests.values() for tool in item.manifest.tools]
+    return ({t.name: ToolSpec(t.name, t.description, t.parameters or {}) for t in tools},
+            {t.name: t.voice for t in tools if t.voice is not None})
+
+
 def dump(out: Path) -> None:
+    from robovoice.assistant.gate import refusal
     from robovoice.assistant.intent import read_request
 
+    specs, voice = _sim_tools()
     rows = {}
     for text in texts():
         intent = read_request(text)
+        verdicts = {}
+        for name, args in CALLS:
+            refused = refusal(intent, specs[name], args, (), voice, tools=list(specs.values()))
+            verdicts[f"{name}{json.dumps(args)}"] = refused["details"].get("reason", "?") if refused else "runs"
         rows[text] = {"clauses": [[c.text, c.kind.value] for c in intent.clauses],
-                      "steps": list(intent.worded_steps), "asks": intent.asks_action}
+                      "steps": list(intent.worded_steps), "asks": intent.asks_action, "gate": verdicts}
     out.write_text(json.dumps(rows, indent=0, sort_keys=True))
     print(f"{len(rows)} texts read into {out}")
 
@@ -52,12 +79,17 @@ def dump(out: Path) -> None:
 def compare(old: Path, new: Path) -> None:
     before, after, ids = json.loads(old.read_text()), json.loads(new.read_text()), texts()
     changed = [t for t in after if t in before and before[t] != after[t]]
+    let_through = 0
     for text in changed:
         print(f"\n{', '.join(ids.get(text, ['?']))}\n  {text}")
         for side, row in (("before", before[text]), ("after ", after[text])):
             kinds = " | ".join(f"{c[0]} [{c[1]}]" for c in row["clauses"])
             print(f"  {side}: {kinds}\n          steps: {row['steps']}")
-    print(f"\n{len(changed)} of {len(after)} texts read differently")
+        old, new = before[text].get("gate", {}), after[text].get("gate", {})
+        for call in sorted(k for k in new if old.get(k) != new[k]):
+            let_through += new[call] == "runs"
+            print(f"  gate: {call}: {old.get(call)} -> {new[call]}")
+    print(f"\n{len(changed)} of {len(after)} texts read or gated differently; {let_through} calls now let through")
 
 
 def main() -> None:
