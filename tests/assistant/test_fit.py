@@ -352,3 +352,16 @@ def test_a_modal_after_the_thing_names_no_other_tool() -> None:
     assert refusal(intent, SPECS["set_projector_power"], {"on": False}, (), VOICE) is None
     stop = refusal(read_request("Stop the call now."), SPECS["stop_robot"], {}, (), VOICE)
     assert stop is not None and stop["details"]["reason"] == OTHER
+
+
+@pytest.mark.parametrize("text", [
+    "Could you ring Clara, no, I mean Ben, and then go and wait by the front door?",
+    "Go and wait for me in the bathroom, dear.",
+])
+def test_a_drive_to_wait_somewhere_is_no_stop(text: str) -> None:
+    """Text test v20: "… and then go and wait by the front door" stopped the robot before the
+    drive: its "wait" is what to do there; the drive's "go" opens the clause."""
+    for tool in ("stop_robot", "cancel_navigation"):
+        body = refusal(read_request(text), SPECS[tool], {}, (), VOICE)
+        assert body is not None and body["details"]["reason"] == OTHER, (tool, body)
+    assert refusal(read_request("Wait, stop, go back."), SPECS["stop_robot"], {}, (), VOICE) is None

@@ -173,6 +173,13 @@ def _names_only_what_was_declined(name: str, intent: Intent, named: Collection[s
     return bool(subject_words(name) & intent.negated_words())
 
 
+def _movers(name: str, voice: Mapping[str, VoiceDecl]) -> list[Sequence[str]]:
+    """For the robot's stop and cancel (voice roles "stop", "cancel"): the words of its motion tools."""
+    if name not in voice or voice[name].role not in ("stop", "cancel"):
+        return []
+    return [section.words for section in voice.values() if section.role == "motion"]
+
+
 def _glossed(spec: ToolSpec | None, arguments: Mapping[str, Any]) -> list[str]:
     """The words of the other names the tool's description gives the call's values ("the loo"
     is the bathroom)."""
@@ -197,12 +204,14 @@ def _about_this(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], sa
 
 def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collection[str],
           declared: Mapping[str, Sequence[str]], glossed: Sequence[str],
-          kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,)) -> bool:
+          kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,), movers: Sequence[Sequence[str]] = ()) -> bool:
     """`fit.fits` for this call, with its rivals and what the other tools act on taken from
-    every tool's declared words."""
+    every tool's declared words. `movers`: the words of the tools that move the robot, rivals of
+    its stop and cancel: "go and wait by the front door" opens with the drive, and its "wait" is
+    what to do there (text test v20: the robot's stop ran before the drive)."""
     elsewhere = [w for tool in declared if tool != name for w in subject_words(tool)]
-    return fits(intent, name, declared.get(name, ()), arguments, said, _siblings(name, declared), glossed,
-                elsewhere, kinds)
+    return fits(intent, name, declared.get(name, ()), arguments, said, [*_siblings(name, declared), *movers],
+                glossed, elsewhere, kinds)
 
 
 def refusal(
@@ -241,8 +250,8 @@ def refusal(
         elif spec is not None and switches_the_one_thing_off(
                 intent, name, arguments, said, {t.name: t.parameters for t in tools if not t.read_only}):
             return None  # "turn it off": the one thing it can switch
-        elif not _fits(intent, name, arguments, said, declared, glossed) or claimed_elsewhere(
-                intent, name, arguments, declared, values, said) or owner:
+        elif not _fits(intent, name, arguments, said, declared, glossed, movers=_movers(name, voice or {})) or \
+                claimed_elsewhere(intent, name, arguments, declared, values, said) or owner:
             why = OTHER  # "plug yourself in" and the projector; "get Ben up on the screen" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
