@@ -994,6 +994,9 @@ def test_a_time_held_to_and_a_habit_said_twice(text: str, steps: tuple[str, ...]
     ("He says the kitchen is far too cold.", ()),
     ("I reckon it's time you rang Ben.", ("I reckon it's time you rang Ben",)),
     ("It's time for my tablets.", ()),
+    ("Hallway. Then give Anna a ring.", ("Hallway", "give Anna a ring")),
+    ("Morning! Then ring Anna.", ("ring Anna",)),
+    ("Ben phoned, then Clara.", ()),
 ])
 def test_habits_watching_the_robot_and_requests_told_on(text: str, steps: tuple[str, ...]) -> None:
     """Text tests v52 and v53: a doctor's "walk to the front door and back every morning" drove

@@ -129,6 +129,8 @@ def instead(clauses: list[Clause], part: str) -> list[Clause] | None:
 _DID = re.compile(r"^[A-Z]\w* (?:\w+ed|rang|rung|came|went|left|said|told|wrote|sent)$")
 # a way to a place, said without a verb: "back to dock", "back on your dock", "on to the kitchen"
 _TOWARDS = re.compile(r"^(?:back|on|over) (?:to|into|onto|on) (?:the |my |your )?\w+(?: \w+)?$", re.IGNORECASE)
+_GREETING = re.compile(r"^(?:(?:good )?(?:morning|afternoon|evening|night)|hello|hi|hiya|thanks|thank you|cheers|"
+                       r"sorry|bye|goodbye|ta)\W*$", re.IGNORECASE)
 _GO_ALONE = re.compile(r"^(?:go|go now|let'?s go|away you go|on you go|get going|get moving|go go go)$",
                        re.IGNORECASE)
 
@@ -155,6 +157,13 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
         go, steps = [], {i for i, c in enumerate(clauses) if (_TOWARDS.match(FILLER.sub("", c.text.strip()))
                          and (i in others or c.kind is ClauseKind.STATEMENT))
                          or (i in others and fragment(c.text) and words(c.text)[0] not in IMPERATIVES)}
+        # "Bedroom. Then call Ben.": a bare place said first, right before "then" and a request, is a step too
+        # (text test v52)
+        first = next((i for i, c in enumerate(clauses) if FILLER.sub("", c.text).strip()), None)
+        if first in places and first + 1 in others and words(clauses[first].text)[0] not in IMPERATIVES \
+                and not _GREETING.match(clauses[first].text.strip()) \
+                and re.search(r"\bthen,?\s+" + re.escape(clauses[first + 1].text.strip()), text, re.IGNORECASE):
+            steps.add(first)
         while grown := {i for i in places - steps if i - 1 in steps or i + 1 in steps}:
             steps |= grown
     return [Clause(c.text, ClauseKind.REQUEST) if i in steps else
