@@ -34,6 +34,17 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
     assert tool_message["role"] == "tool" and "not to do this now" in tool_message["content"]
 
 
+async def test_without_the_checks_the_same_call_reaches_the_robot() -> None:
+    """`Assistant(checks=False)` is the baseline `robovoice bench voice local --no-checks` measures
+    against (issue 11's latency bar): no check before acting, so the refused drive runs."""
+    async with scripted_sim(
+        [call("navigate_to", target="bathroom"), TextReply("On my way.")]
+    ) as (robot, _server, backend):
+        result = await Assistant(backend, robot.tools, checks=False).turn("Don't drive to the bathroom just now.")
+        assert robot.sim is not None and robot.sim.state.nearest_place == "bathroom"
+    assert [o.error for o in result.outcomes] == [None]
+
+
 @pytest.mark.parametrize(("worded", "said"), [
     ("The projector is now on. Anything else?", "Anything else?"),
     ("Done, the projector has been switched on.", "Yes, I can do that when you ask me to."),  # the refusal's line

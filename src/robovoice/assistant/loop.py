@@ -71,14 +71,12 @@ class Assistant:
         max_history_messages: int = 12,
         observer: Observer | None = None,
         fallback_message: str = FALLBACK_MESSAGE,
+        checks: bool = True,  # False: no check before acting nor held call (the benchmark's "without the checks")
     ) -> None:
         if max_steps < 1:
             raise ValueError("max_steps must be at least 1")
-        self.backend = backend
-        self.tools = tools
-        self.system_prompt = system_prompt
-        self.max_steps = max_steps
-        self.max_history_messages = max_history_messages
+        self.backend, self.tools, self.system_prompt, self.checks = backend, tools, system_prompt, checks
+        self.max_steps, self.max_history_messages = max_steps, max_history_messages
         self.fallback_message = fallback_message
         self._observer = observer
         self._history: list[ChatMessage] = []
@@ -360,7 +358,8 @@ class Assistant:
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
         tools, voice = await self.tools.specs(), self.tools.voice()
-        refused = refusal(intent, spec, request.arguments, said, voice, doubtful=doubtful, tools=tools)
+        refused = refusal(intent if self.checks else None, spec, request.arguments, said, voice, doubtful=doubtful,
+                          tools=tools)
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and halts(intent)):
             # the robot's stop or cancel when the words asked for nothing new but may mean it
@@ -368,7 +367,8 @@ class Assistant:
             # runs unless the robot is known to stand still, where it would do nothing the person
             # asked for ("Wait, don't call anyone." answered "I am standing still.")
             refused = refused if await self._standing_still(voice) else None
-        if refused is None and doubtful and (asked := confirm_question(voice, request.name, request.arguments)):
+        if refused is None and doubtful and self.checks and (asked := confirm_question(voice, request.name,
+                                                                                        request.arguments)):
             refused = held(request.name, asked)  # it never reaches the robot unless the person says yes
             self.confirmations.hold(request, asked)
         if refused is not None:  # the user did not ask for this: it never reaches the robot

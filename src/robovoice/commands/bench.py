@@ -64,6 +64,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     voice.add_argument("--stop-wav", type=existing_file, action="append", default=[],
                        help="stops: a recorded stop clip (repeatable; default: six stop phrases spoken by Piper)")
     voice.add_argument("--no-naive", action="store_true", help="local: skip the naive chain (no ratio)")
+    voice.add_argument("--no-checks", action="store_true",
+                       help="local: without the check before acting and held calls (issue 11's baseline)")
     voice.add_argument("--wake-phases", type=int, choices=[1, 2, 4, 8], default=8,
                        help="local: 10 ms offsets the wake word is scored at ([voice] wake_phases; 1: openWakeWord's)")
     voice.add_argument("--json", action="store_true", help="(the output is JSON either way)")
@@ -169,7 +171,7 @@ def _voice(args: argparse.Namespace) -> int:
     from robovoice.config import VoiceConfig
 
     return _print(asyncio.run(bench_local(args.turns or len(LOCAL_COMMANDS), naive=not args.no_naive,
-                                          voice=VoiceConfig(wake_phases=args.wake_phases))))
+                                          voice=VoiceConfig(wake_phases=args.wake_phases), checks=not args.no_checks)))
 
 
 def _console(args: argparse.Namespace) -> int:

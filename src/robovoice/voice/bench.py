@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import functools
 import json
 import logging
 import math
@@ -245,10 +246,12 @@ async def naive_turn(models: VoiceModels, assistant: Assistant, clip: AudioChunk
 
 async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels | None = None,
                       sim_speed: float = 10.0, commands: Sequence[str] = LOCAL_COMMANDS,
-                      naive: bool = True, voice: VoiceConfig | None = None) -> dict[str, Any]:
+                      naive: bool = True, voice: VoiceConfig | None = None, checks: bool = True) -> dict[str, Any]:
     """The all-local stack, from spoken commands to first audio out, per stage, from the last
     word and from the end-of-turn decision; then the naive chain on the same clips. `voice`:
-    the ``[voice]`` settings (default: their defaults)."""
+    the ``[voice]`` settings (default: their defaults); `checks`: False runs the pipeline's
+    assistant without the check before acting (`Assistant(checks=False)`), the baseline of
+    issue 11's latency bar."""
     from robovoice.assistant.connect import connect_robot
     from robovoice.assistant.prompt import SYSTEM_PROMPT
     from robovoice.config import RobotConfig
@@ -285,7 +288,8 @@ async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels |
             pipeline = VoicePipeline(models, local, link.tools, source=room.mic, sink=room.speaker,
                                      reference=room.reference, observer=observe,
                                      moving=(lambda: sim.state.moving) if sim is not None else None,
-                                     config=PipelineConfig.from_config(voice))
+                                     config=PipelineConfig.from_config(voice),
+                                     assistant=functools.partial(Assistant, checks=checks))
             naive_assistant = Assistant(local, naive_link.tools)
 
             async def naive_after(clip: AudioChunk) -> None:
@@ -310,6 +314,7 @@ async def bench_local(turns: int = len(LOCAL_COMMANDS), *, models: VoiceModels |
         "what": f"all-local stack, {len(said)} spoken commands; ms from the user's last word (the VAD's last voiced "
                 "frame) and from the end-of-turn decision; naive chain of the same models for comparison",
         "commands": len(said),
+        "checks": checks,
         "turns": len(finished),
         "speech_end_to_first_audio_ms": _figures(first),
         "stages_from_speech_end": _table(from_last_word),
