@@ -1004,3 +1004,23 @@ def test_habits_watching_the_robot_and_requests_told_on(text: str, steps: tuple[
     "if you'd get her on a video call", "he wants the projector on first", "he says the bathroom
     first" and "it's time we put a call through" were read as talk."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Would it be at all possible to put the projector on?", ("Would it be at all possible to put the projector on",)),
+    ("I'd be so grateful if you'd ring Clara.", ("I'd be so grateful if you'd ring Clara",)),
+    ("I was hoping you'd switch the projector off.", ("I was hoping you'd switch the projector off",)),
+    ("The bathroom, if you would.", ("The bathroom",)),
+    ("Reroute: the kitchen.", ("the kitchen",)),
+    ("ping Anna on the video", ("ping Anna on the video",)),
+    ("Drop the call, thanks.", ("Drop the call",)),
+    ("Scrap that trip.", ()),  # a call-off: the cancel runs while the robot moves (gate.halts)
+    ("Ring Ben... ah no, forget I asked, he's at work.", ()),
+    ("Go to the kitchen, ah no, the front door.", ("the front door",)),
+])
+def test_polite_indirect_requests_and_a_gadgets_words(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v54: "would it be at all possible to …", "I'd be ever so grateful if you'd …",
+    "I was hoping you'd …", "the hallway, if you would", "Reroute: front door", "ping Ben",
+    "drop the call" were read as talk or as ability questions, "scrap that route" cancelled
+    nothing, and "ah no, sorry, forget I said that" took back nothing (the drive ran)."""
+    assert read_request(text).steps == steps

@@ -59,6 +59,7 @@ _POLITE = re.compile(
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
     r"^i(?:'m| am| was)? wonder(?:ing|ed)? (?:if|whether) you\b|^do you think you could\b|^if you (?:could|would)\b|"
+    r"^i(?:'m| am| was)? hoping (?:that )?you(?:'d| would| could| might| can| will)\b|"  # (text test v54)
     # "…, if you'd get her on a video call for him" (text test v53); not "if you'd been / gone / seen …"
     r"^if you'd (?!(?:been|had|gone|seen|done|got|told|said|left|made|taken|heard|known|\w+ed)\b)\w+|"
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
@@ -81,7 +82,7 @@ _POLITE = re.compile(
     r"^might you\b|^(?:is there )?any chance (?:you(?:'d| could| would| can| might| will)?|of you)\b|"
     r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
-    r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right)"
+    r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right|possible)"
     r"(?: (?:for you )?to| if you)\b|"
     # "would it be an idea to ring Anna?", "it might be a good idea to …", "shall we have the
     # projector on?", "what if you gave Clara a ring?" (text test v46; "… after tea" is put off)
@@ -94,7 +95,10 @@ _POLITE = re.compile(
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
 _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$"
-                       r"|^(?:scrap|scratch|ignore|disregard) (?:it|that)$",
+                       r"|^(?:scrap|scratch|ignore|disregard) (?:it|that|this)"
+                       r"(?: (?:route|trip|drive|journey|plan|idea|order|one))?$"
+                       # "forget I said that", "forget what I asked" (text test v54: the drive went ahead)
+                       r"|\bforget (?:(?:that )?i (?:said|asked)|what i (?:said|asked))\b",
                        re.IGNORECASE)
 # A suggestion is a request, whatever its "don't": "why don't you come through?", "why not pop in?"
 _SUGGEST = re.compile(r"^(?:why (?:don'?t|not)|how about|what about)\b"

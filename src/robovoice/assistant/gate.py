@@ -137,7 +137,8 @@ def model_only_texts() -> tuple[str, ...]:
 _HALTING = re.compile(r"\b(?:stop\w*|halt|hold|stay|wait|hang on|freeze|forget|never ?mind|chang\w* (?:my|your) mind"
                       r"|don'?t (?:bother|go|move|drive)|enough|cancel\w*|call it off|after all|leave it|no further"
                       r"|turn (?:back|round|around)|quit(?:s|ting)?|abort\w*|call (?:(?:the|that|this) \w+ )?off"
-                      r"|whoa)\b", re.IGNORECASE)
+                      r"|whoa|scrap (?:it|that|this)|scratch that)\b",  # "scrap that route" (text test v54)
+                      re.IGNORECASE)
 
 
 def halts(intent: Intent | None) -> bool:

@@ -95,7 +95,8 @@ _A_MOMENT = r"(?:a|the) (?:moment|minute|second|sec|mo|chance)\b"
 # … but these are courtesy ("if you don't mind, …", "when you're ready, …"), and …
 COURTESY = re.compile(
     r"^(?:if|when) (?:you(?:'re| are) (?:ready|free)|you (?:don'?t|do not|wouldn'?t) mind|"
-    r"you (?:can|could|would|might|will|please|like|want)\b|"
+    r"you (?:can|could|would|might|will|please|like|want)\b|you'd (?!(?:been|had|have|gone|seen|done)\b)\w+|"
+    r"you(?:'re| are) (?:settled|in position|all set)\b|"
     r"you(?:'d| would) be (?:so |ever so )?(?:kind|good|sweet|a (?:love|dear|darling|star))\b|"
     rf"you(?:'ve| have| get| got)?(?: got)? {_A_MOMENT}|"
     r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",

@@ -320,7 +320,7 @@ def _tag_asks(before: Clause, tag: str) -> bool:
     it ("would you ever …, please?"), a bare place or thing with "please" ("Bedroom, please.")."""
     if before.kind is ClauseKind.ABILITY:
         return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
-    urges = re.search(r"\bplease\b", tag, re.IGNORECASE) or HASTE.match(tag.strip())
+    urges = re.search(r"\bplease\b|^\s*if you\b", tag, re.IGNORECASE) or HASTE.match(tag.strip())  # "if you would"
     return before.kind is ClauseKind.STATEMENT and fragment(before.text) and urges is not None \
         and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
 

@@ -19,7 +19,7 @@ FILLER = re.compile(
     r"also|instead|first of all|to (?:begin|start) with|first|"
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|i mean|i meant|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
-    r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|like|what am i saying|what was i thinking|silly me|y'all|yo|"
+    r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|ah|ahh|aah|aw|k|like|what am i saying|what was i thinking|silly me|y'all|yo|"
     r"(?:i'?ll )?tell you what|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
@@ -32,6 +32,7 @@ _HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?(?:sh
           r"(?:,? (?:now|please))?")
 HASTE = re.compile(rf"^(?:{_HASTE})$", re.IGNORECASE)
 TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|ye)(?: please| like)?|"
+             r"if you (?:would|could|please|wouldn'?t mind|don'?t mind)|"
              r"(?:pretty )?please|thanks|thank you|dear|love|pet|darling|my dear|i mean|mind|mate|pal|hen|duck|petal|"
              rf"sweetheart|lovey|{_HASTE}|"
              # thanks, and what the robot is called in passing ("Away through to the living room, son, …":
@@ -57,6 +58,7 @@ IMPERATIVES = frozenset({
     "place", "telephone", "proceed",  # formal: "place a call to …", "proceed to the living room"
     "hit", "dip", "bounce",  # young people's: "hit up Clara", "dip to the hallway"
     "steer",  # "steer for the bathroom" (text test v48)
+    "ping", "drop",  # a gadget's words: "ping Ben on video", "drop the call" (text test v54)
     "disconnect",  # "please disconnect this call now" (audio test v40)
 })
 # The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
@@ -138,7 +140,8 @@ NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|ther
 
 # A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
 WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
-                        r"forget (?:it|that)|never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
+                        r"forget (?:it|that|(?:that )?i (?:said|asked)(?: that| it)?|what i (?:said|asked))|"
+                        r"never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
                         r"leave (?:it|that))"
                         r"\b[\s,]*)+$",
                         re.IGNORECASE)
@@ -283,7 +286,9 @@ _THATS_WHERE = re.compile(r"\b((?:the|my|your) \w+(?: \w+)?)\s*(?:,|—|-)\s*tha
 
 # A list's heading: "three little jobs for you: the hallway, then …", "Two things. …" (each is asked).
 LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
-                        r"(?:things|jobs|tasks|errands)(?: for you| to do)?$", re.IGNORECASE)
+                        r"(?:things|jobs|tasks|errands)(?: for you| to do)?$"
+                        # a heading for where to go instead: "Reroute: front door, …" (text test v54)
+                        r"|^(?:reroute|redirect|new destination)$", re.IGNORECASE)
 
 # Vague words that end a list of requests ("…, and turn the projector on and stuff"): no step
 VAGUE = re.compile(r"^(?:stuff|things|everything|whatever|all that|and so on|so on|that sort of thing|etc)$",
