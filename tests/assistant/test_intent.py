@@ -1024,3 +1024,22 @@ def test_polite_indirect_requests_and_a_gadgets_words(text: str, steps: tuple[st
     "drop the call" were read as talk or as ability questions, "scrap that route" cancelled
     nothing, and "ah no, sorry, forget I said that" took back nothing (the drive ran)."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Living room, quick smart, please.", ("Living room",)),
+    ("The kitchen, robot, chop chop.", ("The kitchen",)),  # the robot's name between: no word of the request
+    ("Off to bed with you now.", ("Off to bed with you now",)),
+    ("Mum went off to bed early.", ()),
+    ("Put the projector on, and when it's ready ring Clara.", ("Put the projector on", "ring Clara")),
+    ("Once you're over in the bedroom, put the projector on.", ("go to the bedroom", "put the projector on")),
+    ("Switch the projector off, but pop into the kitchen before that.",
+     ("pop into the kitchen", "Switch the projector off")),
+    ("Ring Anna. Before that, go to the kitchen.", ("go to the kitchen", "Ring Anna")),
+    ("Swing by the front door, would ya?", ("Swing by the front door",)),  # "ya": you; a tag, no step
+])
+def test_a_casual_register_haste_and_a_late_before_that(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v55: "Bathroom, quick smart.", "Front door, Jarvis, chop chop.", "Off to bed with
+    ya", "once it's warmed up call Anna", "once you're out in the hallway, …" and "…, but go to the
+    living room before that" were talk, a lost step or a step out of order."""
+    assert read_request(text).steps == steps

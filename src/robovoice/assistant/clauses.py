@@ -15,13 +15,14 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     r"|\s+[-\u2013\u2014]+\s+"  # "go to the bedroom - sorry, no, the living room"
     r"|:\s+"  # "three things: go into the lounge, …" (not a time: "half 3:30")
     # "go to the bathroom before that, switch …": a transcript that lost the full stop
-    r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:,|$))",
+    r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:[,.!?]|$))",
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
 # "…, and once that's done take yourself off for a charge": the step before, done, then this one
 _DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:that|this|it)(?:'s| is| has)(?: been)? "
-                        r"(?:done|finished|over|sorted)\s+", re.IGNORECASE)
+                        # "… switch on the projector, and once it's warmed up call Anna" (text test v55)
+                        r"(?:done|finished|over|sorted|warmed up|ready|on|running)\s+", re.IGNORECASE)
 # "call her and, uh, then …": a conjunction left at the end by the comma after it (not at the
 # very end: "Hey Jarvis, go and" was cut off)
 _TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
@@ -49,7 +50,7 @@ _APPOSITIVE = re.compile(r"\b((?:my|your|our) (?:" + "|".join(sorted(RELATIONS))
 
 # "Could ye head through to the bathroom", "will youse ring Ben": you, as said in Ireland,
 # Scotland and the north of England (text test v23)
-_YOU = re.compile(r"\b(?:ye|youse|yous)\b", re.IGNORECASE)
+_YOU = re.compile(r"\b(?:ye|youse|yous|ya)\b", re.IGNORECASE)  # "off to bed with ya" (text test v55)
 
 
 # "and after that call, Clara": speech-to-text's comma between a call and whom (audio test v14)

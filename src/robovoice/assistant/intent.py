@@ -50,7 +50,6 @@ from robovoice.assistant.lexicon import (
     ASKING_VERBS,
     FAREWELL,
     FILLER,
-    HASTE,
     IMPERATIVE_SHAPE,
     IMPERATIVES,
     LATER_ONLY,
@@ -68,7 +67,7 @@ from robovoice.assistant.lexicon import (
     unfinished,
     words,
 )
-from robovoice.assistant.neighbours import settle
+from robovoice.assistant.neighbours import settle, tag_asks
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
 
 
@@ -87,8 +86,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
     for part in _actually_only(_arrival_first(split_clauses(text))):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
-            if clauses and _tag_asks(clauses[-1], part):  # "would you ever …, please?"; "Bedroom, please."
-                clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)
+            if (at := _last_said(clauses)) is not None and tag_asks(clauses[at], part):  # "Bedroom, please."
+                clauses[at] = Clause(clauses[at].text, ClauseKind.REQUEST)  # "would you ever …, please?"
             continue
         fixed, amending = amend(clauses, part, text, amending)
         if fixed is not None:  # "ring Clara, I mean Ben"; "…, sorry, the bedroom" (amend)
@@ -313,16 +312,6 @@ _BACK_TO_SOMEONE = re.compile(r"(?!(?:please |kindly |just |now )*(?:go|come|hea
                               r"[^,]*\b(?:to|into) (?:the|my|our)\b)"
                               r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
-
-
-def _tag_asks(before: Clause, tag: str) -> bool:
-    """Whether the tag makes the clause before it a request: an ability question that asks with
-    it ("would you ever …, please?"), a bare place or thing with "please" ("Bedroom, please.")."""
-    if before.kind is ClauseKind.ABILITY:
-        return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
-    urges = re.search(r"\bplease\b|^\s*if you\b", tag, re.IGNORECASE) or HASTE.match(tag.strip())  # "if you would"
-    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and urges is not None \
-        and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
 
 
 def _arrival_first(parts: list[str]) -> list[str]:

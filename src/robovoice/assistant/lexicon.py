@@ -26,6 +26,7 @@ FILLER = re.compile(
 )
 # haste said after a request: "Hallway, and quick about it." (a tag; after a bare place it asks for it)
 _HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?(?:sharpish|smartish)|chop chop|pronto|"
+          r"quick smart|"  # (text test v55)
           r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
           # … and how to go: "bathroom, please, quietly" (audio test v33)
           r"(?:please,? )?(?:and )?(?:nice and )?(?:quiet(?:ly)?|slow(?:ly)?|careful(?:ly)?|gently|soft(?:ly)?|quickly)"
@@ -127,7 +128,7 @@ def base_form(participle: str) -> str:
 # first word, then "yourself", a way to a place, or up/on/off a thing. Not a pronoun, a past
 # tense, a gerund or a plural ("went over to", "lights on the").
 IMPERATIVE_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|off|over|along|across|back|down|up|round|around|"
-                              r"through|out|ben) ){0,2}(?:to|into|towards?|by|tae|intae|ben) (?:the|my|your)\b|"
+                              r"through|out|ben) ){0,2}(?:to|into|towards?|by|tae|intae|ben) (?:the|my|your|bed)\b|"
                               r"(?:up|on|off) (?:the|my|your) |(?:the|my|your) \w+ (?:on|off)\b"
                               r"(?! (?:the|this|that|my|your|a|an|his|her|our|their|its)\b))")
 # (a gerund's "-ing" is not that of "swing", "bring", "ring")

@@ -16,7 +16,8 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.amend import go_list
-from robovoice.assistant.lexicon import FILLER, IMPERATIVES, LATER, words
+from robovoice.assistant.clause_kind import classify
+from robovoice.assistant.lexicon import FILLER, HASTE, IMPERATIVES, LATER, LIST_INTRO, fragment, words
 from robovoice.assistant.reading import Clause, ClauseKind
 
 # a habit: advice or a routine, not a request for now (a statement that names one stays talk)
@@ -35,17 +36,47 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
            for c in go_list(clauses, text)]
     for i in range(1, len(out)):
         before, clause = out[i - 1], out[i]
-        text = FILLER.sub("", clause.text.strip()).strip()
-        if clause.kind is ClauseKind.NEGATED and before.kind is ClauseKind.REQUEST and _BACK.match(text) \
-                and (LATER.search(text) or _HABIT.search(text)):
+        said = FILLER.sub("", clause.text.strip()).strip()
+        if clause.kind is ClauseKind.NEGATED and before.kind is ClauseKind.REQUEST and _BACK.match(said) \
+                and (LATER.search(said) or _HABIT.search(said)):
             out[i - 1] = Clause(before.text, ClauseKind.NEGATED)
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
-                and _described(text):
+                and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    return out
+    return _before_that_last(out, text)
+
+
+_BEFORE_THAT = re.compile(r"^(?:before (?:that|then|you do that|doing that)|beforehand)$", re.IGNORECASE)
+
+
+def _before_that_last(clauses: list[Clause], text: str) -> list[Clause]:
+    """"Turn on the projector - oh, but go to the living room before that": a "before that"
+    said after a request, with no request after it, puts that request first (text test v55; said
+    before a request, "before that, …" puts the one after it first: `intent.read_request`)."""
+    asked = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST]
+    for i, clause in enumerate(clauses):
+        said_at = text.rfind(clause.text.strip())  # the requests all said before it (not "…. Before that, go …")
+        if i and _BEFORE_THAT.match(FILLER.sub("", clause.text.strip()).strip()) and asked and asked[0] < i - 1 \
+                and clauses[i - 1].kind is ClauseKind.REQUEST \
+                and all(text.find(clauses[j].text) < said_at for j in asked) \
+                and re.search(re.escape(clauses[i - 1].text.strip()) + r"\W+" + re.escape(clause.text.strip()), text):
+            moved = clauses[i - 1]
+            return [*clauses[:asked[0]], moved, *[c for k, c in enumerate(clauses) if k >= asked[0] and k != i - 1]]
+    return clauses
 
 
 def _described(text: str) -> bool:
     """No verb of a request of its own and no "you": where the robot goes, told, not asked."""
     said = words(text)
     return bool(said) and said[0] not in IMPERATIVES and "you" not in said and "please" not in said
+
+
+def tag_asks(before: Clause, tag: str) -> bool:
+    """Whether the tag makes the clause before it a request: an ability question that asks with
+    it ("would you ever …, please?"), a bare place or thing with "please", "if you would" or
+    haste ("Bedroom, please.", "Front door, Jarvis, chop chop": the name between says nothing)."""
+    if before.kind is ClauseKind.ABILITY:
+        return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
+    urges = re.search(r"\bplease\b|^\s*if you\b", tag, re.IGNORECASE) or HASTE.match(tag.strip())
+    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and urges is not None \
+        and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
