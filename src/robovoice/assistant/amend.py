@@ -147,6 +147,7 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
     go = [i for i, c in enumerate(clauses)
           if c.kind is ClauseKind.REQUEST and _GO_ALONE.match(FILLER.sub("", c.text.strip()).strip(" .!"))]
     places = {i for i, c in enumerate(clauses) if c.kind is ClauseKind.STATEMENT and fragment(c.text)
+              and words(c.text)[:1] != ["wait"]  # "…, no, wait, I mean Dr Weber, and then …": a pause (text v20)
               and not re.search(re.escape(c.text.strip()) + r"\s*:", text) and not _DID.match(c.text.strip())
               and not _a_name(c.text.strip(), text) and not LIST_INTRO.match(FILLER.sub("", c.text.strip()))}
     others = [i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and i not in go]
