@@ -4,6 +4,7 @@ were chosen from (on dev sets only; docs/judgement.md, "Transcript confidence" a
 noisy to act on").
 
     python -m robovoice.voice.confidence_eval tests/data/eval/audio.jsonl tests/data/eval/audio-dev-unsure.jsonl
+    python -m robovoice.voice.confidence_eval FILES --second DIR   # a second Whisper model's opinion too
 
 Each clip with the wake word is transcribed whole, as the pipeline transcribes a command
 (Whisper tiny.en, the sim robot's tool hint, word scores on). Clips are counted as
@@ -11,12 +12,16 @@ commands (the case expects a tool call), unintelligible (class ``unintelligible`
 speech (negations, mentions, questions: no call expected, but clearly said). The speech-to-noise
 estimate is taken on the clip's first utterance as the endpointer cuts it (Silero VAD, the
 default settings), as the pipeline takes it. Prints one JSON line per clip, then the sweep.
+`--second DIR`: each clip is also transcribed by the CTranslate2 Whisper model in DIR (e.g.
+Whisper base), and the sweep says which clips tiny.en is unsure or in doubt of where the
+second model hears the same words.
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import re
 from collections.abc import Sequence
 from typing import Any
 
@@ -60,10 +65,18 @@ def first_utterance_snr(audio: AudioChunk) -> float | None:
     return speech_to_noise_db(ended[0].audio) if ended else None
 
 
-def score_clips(paths: Sequence[str]) -> list[dict[str, Any]]:
+def same_words(a: str, b: str) -> bool:
+    """Two transcripts say the same words (case, punctuation and the wake phrase aside)."""
+    def said(text: str) -> list[str]:
+        return re.findall(r"[a-z0-9']+", strip_wake_words(text).lower())
+    return bool(said(a)) and said(a) == said(b)
+
+
+def score_clips(paths: Sequence[str], second: str | None = None) -> list[dict[str, Any]]:
     from pathlib import Path
 
     stt, hint, rows = WhisperTranscriber(word_scores=True), sim_hint(), []
+    other = WhisperTranscriber(second) if second else None
     for path in paths:
         for case in load_cases(Path(path)):
             if case.audio is None or not case.wake:
@@ -79,6 +92,11 @@ def score_clips(paths: Sequence[str]) -> list[dict[str, Any]]:
                    "mean_word_probability": mean_word_probability(heard.confidence, command),
                    "no_speech": round(heard.confidence.no_speech_prob, 3),
                    "snr_db": None if snr is None else round(snr, 1)}
+            if other is not None:
+                again = other.transcribe(audio, hint)
+                assert again.confidence is not None
+                row |= {"second": again.text, "second_logprob": round(again.confidence.avg_logprob, 3),
+                        "second_s": round(again.inference_s, 2), "agree": same_words(heard.text, again.text)}
             print(json.dumps(row), flush=True)
             rows.append(row)
     return rows
@@ -99,14 +117,20 @@ def sweep(rows: Sequence[dict[str, Any]]) -> list[str]:
             for t in WORD_THRESHOLDS]
     out += [line(f"speech to noise < {t} dB", lambda r, t=t: r.get("snr_db") is not None and r["snr_db"] < t)
             for t in SNR_THRESHOLDS]
+    if rows and "agree" in rows[0]:  # the clips a second model's same words would lift out of doubt
+        out += [line(f"< {t}, the second agrees", lambda r, t=t: r["avg_logprob"] < t and r["agree"])
+                for t in (-0.6, -0.4)]
+        out += [line(f"< {t}, the second does not", lambda r, t=t: r["avg_logprob"] < t and not r["agree"])
+                for t in (-0.6, -0.4)]
     return out
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("files", nargs="+", help="audio case files (JSON Lines)")
+    parser.add_argument("--second", help="a second CTranslate2 Whisper model directory to compare with")
     args = parser.parse_args(argv)
-    for text in sweep(score_clips(args.files)):
+    for text in sweep(score_clips(args.files, args.second)):
         print(text)
     return 0
 
