@@ -1037,6 +1037,8 @@ def test_polite_indirect_requests_and_a_gadgets_words(text: str, steps: tuple[st
      ("pop into the kitchen", "Switch the projector off")),
     ("Ring Anna. Before that, go to the kitchen.", ("go to the kitchen", "Ring Anna")),
     ("Swing by the front door, would ya?", ("Swing by the front door",)),  # "ya": you; a tag, no step
+    ("Call Clara after you've come to the hallway and turned the projector off.",
+     ("come to the hallway", "turn the projector off", "Call Clara")),  # two things done first (text v54)
 ])
 def test_a_casual_register_haste_and_a_late_before_that(text: str, steps: tuple[str, ...]) -> None:
     """Text test v55: "Bathroom, quick smart.", "Front door, Jarvis, chop chop.", "Off to bed with

@@ -114,7 +114,8 @@ ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:'re| are) (?:(?:out|over|up
                         r"(?:in|at|by|inside|into) "
                         r"((?:the|my|your) \w+(?: \w+)?)$", re.IGNORECASE)
 ARRIVED = re.compile(r"\s+((?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"
-                     r"|been|gone|popped|nipped)(?: yourself| over| down| up| through| across| back)*"
+                     r"|been|gone|popped|nipped|come|driven|headed|moved)"
+                     r"(?: yourself| over| down| up| through| across| back)*"
                      r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?)\s*$", re.IGNORECASE)
 
 # "Switch the projector off before you head to the bedroom" (text test v26), in one breath:

@@ -17,7 +17,7 @@ import re
 
 from robovoice.assistant.amend import go_list
 from robovoice.assistant.clause_kind import classify
-from robovoice.assistant.lexicon import FILLER, HASTE, IMPERATIVES, LATER, LIST_INTRO, fragment, words
+from robovoice.assistant.lexicon import FILLER, HASTE, IMPERATIVES, LATER, LIST_INTRO, base_form, fragment, words
 from robovoice.assistant.reading import Clause, ClauseKind
 
 # a habit: advice or a routine, not a request for now (a statement that names one stays talk)
@@ -43,7 +43,26 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    return _before_that_last(out, text)
+    return _before_that_last(_done_too(out, text), text)
+
+
+def _done_too(clauses: list[Clause], text: str) -> list[Clause]:
+    """"I'd like to ring Ben after you've gone into the bedroom and switched the projector on":
+    the second thing done ("switched …") is a step too, right after the first ("go into the
+    bedroom", `intent.read_request`'s), before the request (text test v54)."""
+    for i, clause in enumerate(clauses):
+        said = words(clause.text)
+        if clause.kind is not ClauseKind.STATEMENT or not said or base_form(said[0]) == said[0] \
+                or base_form(said[0]) not in IMPERATIVES:
+            continue
+        done = re.search(r"\byou(?:'ve| have) (\w+)\b([^.!?]*?),?\s+and\s+" + re.escape(clause.text.strip()), text,
+                         re.IGNORECASE)
+        first = f"{base_form(done.group(1))}{done.group(2)}".strip().lower() if done else None
+        at = next((j for j, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST and c.text.lower() == first), None)
+        if at is not None and at < i:
+            step = Clause(base_form(said[0]) + clause.text.strip()[len(said[0]):], ClauseKind.REQUEST)
+            return [*clauses[:at + 1], step, *[c for k, c in enumerate(clauses) if k > at and k != i]]
+    return clauses
 
 
 _BEFORE_THAT = re.compile(r"^(?:before (?:that|then|you do that|doing that)|beforehand)$", re.IGNORECASE)
