@@ -1039,6 +1039,12 @@ def test_polite_indirect_requests_and_a_gadgets_words(text: str, steps: tuple[st
     ("Swing by the front door, would ya?", ("Swing by the front door",)),  # "ya": you; a tag, no step
     ("Call Clara after you've come to the hallway and turned the projector off.",
      ("come to the hallway", "turn the projector off", "Call Clara")),  # two things done first (text v54)
+    ("Crank up that projector, would you?", ("Crank up that projector",)),  # (text v56)
+    ("Ring Clara, but before that switch the projector off.", ("switch the projector off", "Ring Clara")),
+    ("Go to the hallway and then I wanna ring Anna.", ("Go to the hallway", "I want to ring Anna")),
+    ("I need to be sure she's in, so ring Clara for me.", ("so ring Clara for me",)),  # why, said first
+    ("Turn the projector on, I want to see the football.", ("Turn the projector on",)),  # a look, no call
+    ("Put the projector on, I want to see Anna.", ("Put the projector on", "I want to see Anna")),  # a call
 ])
 def test_a_casual_register_haste_and_a_late_before_that(text: str, steps: tuple[str, ...]) -> None:
     """Text test v55: "Bathroom, quick smart.", "Front door, Jarvis, chop chop.", "Off to bed with

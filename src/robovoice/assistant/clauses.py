@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.lexicon import RELATIONS
+from robovoice.assistant.lexicon import IMPERATIVES, RELATIONS
 
 # Sentence ends, commas/semicolons, and the conjunctions that join requests.
 _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
@@ -15,7 +15,10 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     r"|\s+[-\u2013\u2014]+\s+"  # "go to the bedroom - sorry, no, the living room"
     r"|:\s+"  # "three things: go into the lounge, …" (not a time: "half 3:30")
     # "go to the bathroom before that, switch …": a transcript that lost the full stop
-    r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:[,.!?]|$))",
+    r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:[,.!?]|$))"
+    # "Call Ben, but before that turn on the projector" (text test v56); not "before that show starts"
+    r"|(?<=\bbefore that)\s+(?=(?:" + "|".join(sorted(IMPERATIVES))
+    + r")\s+(?:the|my|your|it|that|this|me|him|her|them|us|on|off|up|down|over|to|into|a|an)\b)",
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)

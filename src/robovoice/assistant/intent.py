@@ -289,6 +289,7 @@ _ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of
 _FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 _SOMEONES = re.compile(r"^\s+(?:[A-Z]\w+|my \w+|the \w+)'s\b")  # "… see Anna's recipe": hers, not her
+_SEEN = re.compile(r"^\s+(?:something|it|that|this|them|the|a|an|my|our|some|what|how)\b")  # "… see something": a look
 # not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41)
 _AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
                     r"|followed by)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
@@ -385,5 +386,7 @@ def _first_asked(clauses: list[Clause]) -> int | None:
 def _reason(bare: str, clauses: list[Clause]) -> bool:
     plan = OWN_PLAN.match(bare)
     # "…, I want to see Anna's scone recipe": a thing of Anna's, not Anna (text test v51)
-    return (plan is not None and (plan.group(1).lower() not in ASKING_VERBS or bool(_SOMEONES.match(bare[plan.end():])))
+    rest = bare[plan.end():] if plan is not None else ""
+    return (plan is not None and (plan.group(1).lower() not in ASKING_VERBS or bool(_SOMEONES.match(rest))
+                                  or (plan.group(1).lower() == "see" and bool(_SEEN.match(rest))))
             and any(c.kind is ClauseKind.REQUEST for c in clauses))

@@ -129,7 +129,7 @@ def base_form(participle: str) -> str:
 # tense, a gerund or a plural ("went over to", "lights on the").
 IMPERATIVE_SHAPE = re.compile(r"^(\w+) (?:yourself\b|(?:(?:on|off|over|along|across|back|down|up|round|around|"
                               r"through|out|ben) ){0,2}(?:to|into|towards?|by|tae|intae|ben) (?:the|my|your|bed)\b|"
-                              r"(?:up|on|off) (?:the|my|your) |(?:the|my|your) \w+ (?:on|off)\b"
+                              r"(?:up|on|off) (?:the|my|your|that|this) |(?:the|my|your) \w+ (?:on|off)\b"
                               r"(?! (?:the|this|that|my|your|a|an|his|her|our|their|its)\b))")
 # (a gerund's "-ing" is not that of "swing", "bring", "ring")
 NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|there|here|the|a|an|my|your|his|her|"
@@ -239,7 +239,8 @@ def unfinished(clause: str) -> bool:
 # pls" is "can you ring ben please"; "please to call my daughter", as a learner says it)
 _TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz": "please", "thx": "thanks",
            "n": "and", "rn": "right now", "bot": "robot", "ngl": "honestly", "tbh": "honestly", "imo": "honestly",
-           "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really", "nah": "no", "naw": "no"}
+           "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really", "nah": "no", "naw": "no",
+           "wanna": "want to", "gonna": "going to", "gotta": "got to"}  # "after that I wanna call Ben" (text v56)
 _TEXTED_WORD = re.compile(r"\b(" + "|".join(_TEXTED) + r")\b", re.IGNORECASE)
 _STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
 

@@ -17,7 +17,18 @@ import re
 
 from robovoice.assistant.amend import go_list
 from robovoice.assistant.clause_kind import classify
-from robovoice.assistant.lexicon import FILLER, HASTE, IMPERATIVES, LATER, LIST_INTRO, base_form, fragment, words
+from robovoice.assistant.lexicon import (
+    ASKING_VERBS,
+    FILLER,
+    HASTE,
+    IMPERATIVES,
+    LATER,
+    LIST_INTRO,
+    OWN_PLAN,
+    base_form,
+    fragment,
+    words,
+)
 from robovoice.assistant.reading import Clause, ClauseKind
 
 # a habit: advice or a routine, not a request for now (a statement that names one stays talk)
@@ -34,6 +45,11 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
     (`amend.go_list`), a habit, "… and back" with a time, a way said while the robot is watched."""
     out = [Clause(c.text, ClauseKind.NEGATED) if c.kind is ClauseKind.REQUEST and _HABIT.search(c.text) else c
            for c in go_list(clauses, text)]
+    for i, clause in enumerate(out):  # "I wanna make sure, so call her": why, said first (text test v26)
+        plan = OWN_PLAN.match(FILLER.sub("", clause.text.strip()).strip())
+        if clause.kind is ClauseKind.REQUEST and plan and plan.group(1).lower() not in ASKING_VERBS \
+                and any(c.kind is ClauseKind.REQUEST for c in out[i + 1:]):
+            out[i] = Clause(clause.text, ClauseKind.STATEMENT)
     for i in range(1, len(out)):
         before, clause = out[i - 1], out[i]
         said = FILLER.sub("", clause.text.strip()).strip()
