@@ -1045,6 +1045,9 @@ def test_polite_indirect_requests_and_a_gadgets_words(text: str, steps: tuple[st
     ("I need to be sure she's in, so ring Clara for me.", ("so ring Clara for me",)),  # why, said first
     ("Turn the projector on, I want to see the football.", ("Turn the projector on",)),  # a look, no call
     ("Put the projector on, I want to see Anna.", ("Put the projector on", "I want to see Anna")),  # a call
+    ("Put the projector on once you're in the living room.", ("go to the living room", "Put the projector on")),
+    ("I almost told you to stop, but carry on, it's fine.", ()),  # (text v57)
+    ("I'm telling you to stop!", ("I'm telling you to stop",)),
 ])
 def test_a_casual_register_haste_and_a_late_before_that(text: str, steps: tuple[str, ...]) -> None:
     """Text test v55: "Bathroom, quick smart.", "Front door, Jarvis, chop chop.", "Off to bed with

@@ -152,6 +152,9 @@ _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "lo
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
+# "I was gonna tell you to stop, but …": a stop nearly said is no stop (text test v57)
+_WAS_GOING_TO = re.compile(r"\b(?:was|were) (?:going to|about to|meaning to|gonna) (?:tell|ask|say)\b"
+                           r"|\b(?:nearly|almost) (?:told|asked|said)\b", re.IGNORECASE)
 
 
 def classify(clause: str) -> ClauseKind:
@@ -164,7 +167,8 @@ def classify(clause: str) -> ClauseKind:
     if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)):
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
-                                               r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered):
+                                               r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered) \
+            and not _WAS_GOING_TO.search(lowered):
         return ClauseKind.REQUEST  # a stop is always a request
     if _SUGGEST.search(lowered) and not _CALL_OFF.search(lowered) and not LATER.search(lowered):
         return ClauseKind.REQUEST

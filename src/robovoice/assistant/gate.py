@@ -134,7 +134,9 @@ def model_only_texts() -> tuple[str, ...]:
 # request ("Hold it! Stay put!", "never mind, don't go there after all", "whoa, quit driving"); only with one of them
 # does the robot's stop or cancel run on such words ("don't mind the mess in the bedroom",
 # said while it drove, cancelled the drive in text test v13)
-_HALTING = re.compile(r"\b(?:stop\w*|halt|hold|stay|wait|hang on|freeze|forget|never ?mind|chang\w* (?:my|your) mind"
+# (not "hold off on ringing Ben": it puts a call off, no halt; text test v57)
+_HALTING = re.compile(r"\b(?:stop\w*|halt|hold(?! off)|stay|wait|hang on|freeze|forget|never ?mind"
+                      r"|chang\w* (?:my|your) mind"
                       r"|don'?t (?:bother|go|move|drive)|enough|cancel\w*|call it off|after all|leave it|no further"
                       r"|turn (?:back|round|around)|quit(?:s|ting)?|abort\w*|call (?:(?:the|that|this) \w+ )?off"
                       r"|whoa|scrap (?:it|that|this)|scratch that)\b",  # "scrap that route" (text test v54)

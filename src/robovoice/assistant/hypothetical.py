@@ -113,7 +113,8 @@ SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| hav
 ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (text test v55)
                         r"(?:in|at|by|inside|into) "
                         r"((?:the|my|your) \w+(?: \w+)?)$", re.IGNORECASE)
-ARRIVED = re.compile(r"\s+((?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"
+ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|inside) (?:the|my|your) \w+(?: \w+)?"
+                     r"|(?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"
                      r"|been|gone|popped|nipped|come|driven|headed|moved)"
                      r"(?: yourself| over| down| up| through| across| back)*"
                      r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?)\s*$", re.IGNORECASE)

@@ -327,8 +327,9 @@ def _arrival_first(parts: list[str]) -> list[str]:
             out.insert(len(out) - 1, part[:first.start()])  # "ring him, but come here before you do"
             continue
         late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part)
-        if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:
-            out += [part[:late.start()], late.group(1)]
+        if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:  # "once you're in X": X first
+            there = re.match(r"\w+ you(?:'re| are) ", late.group(1)) is not None  # (text test v57)
+            out += [late.group(1), part[:late.start()]] if there else [part[:late.start()], late.group(1)]
         else:
             out.append(part)
     return out
