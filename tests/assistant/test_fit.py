@@ -365,3 +365,16 @@ def test_a_drive_to_wait_somewhere_is_no_stop(text: str) -> None:
         body = refusal(read_request(text), SPECS[tool], {}, (), VOICE)
         assert body is not None and body["details"]["reason"] == OTHER, (tool, body)
     assert refusal(read_request("Wait, stop, go back."), SPECS["stop_robot"], {}, (), VOICE) is None
+
+
+def test_next_door_names_the_neighbour_not_the_front_door_and_a_picture_thing_is_the_projector() -> None:
+    """Text test v58: "call Clara next door" let the drive to the front door through; "Switch that
+    picture thing off" fitted no tool."""
+    call = read_request("Could you call Clara next door?")
+    tools = list(SPECS.values())
+    assert refusal(call, SPECS["navigate_to"], {"target": "front door"}, (), VOICE, tools=tools) is not None
+    assert refusal(call, SPECS["start_video_call"], {"contact": "Clara"}, (), VOICE, tools=tools) is None
+    off = read_request("Switch that picture thing off.")
+    assert refusal(off, SPECS["set_projector_power"], {"on": False}, (), VOICE, tools=tools) is None
+    assert refusal(read_request("Take a picture of the hallway."), SPECS["set_projector_power"], {"on": True}, (),
+                   VOICE, tools=tools) is not None

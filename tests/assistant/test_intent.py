@@ -1054,3 +1054,33 @@ def test_a_casual_register_haste_and_a_late_before_that(text: str, steps: tuple[
     ya", "once it's warmed up call Anna", "once you're out in the hallway, …" and "…, but go to the
     living room before that" were talk, a lost step or a step out of order."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("There she goes, off to the kitchen again.", ()),  # watched, not asked
+    ("And off he goes, down the hallway like a tank.", ()),
+    ("There he goes. Bedroom, please.", ("Bedroom",)),  # a bare place with "please" is still asked
+    ("I'll put the kettle on and sit in the living room for a bit.", ()),  # the speaker's own plan
+    ("I'm going to ring the chemist and then pop to the front door.", ()),
+    ("I'll wait here and call Anna for me.", ("call Anna for me",)),  # "for me": asked of the robot
+    ("I'll put the kettle on, and you go to the kitchen.", ("you go to the kitchen",)),
+    ("Can you video call the surgery, or only Dr. Weber?", ()),  # what it can do
+    ("Call Ben, or just Anna if he's busy.", ("Call Ben",)),
+    ("Ring Clara, and when you're done with that go back to your charger.",
+     ("Ring Clara", "go back to your charger")),
+    ("Ring Clara, and after you've done that, go into the bedroom.", ("Ring Clara", "go into the bedroom")),
+    ("Mrs Pritchard asked me to get you to call Clara.", ("call Clara",)),  # passed on through the speaker
+    ("Dr. Weber wants me to have you switch the projector off.", ("switch the projector off",)),
+    ("Anna told me to ask you to ring her tomorrow.", ()),  # passed on, for later
+    ("Nobody asked me to get you to call Clara.", ()),
+    ("Ring Dr Weber this afternoon.", ()),  # later today, not now
+    ("Turn the front door, just so you know.", ()),  # news ("…, just so you know"), audio test v49's mishearing
+    ("Go to the kitchen. Just so you know, Ben is coming.", ("Go to the kitchen",)),
+])
+def test_watched_own_plans_scope_questions_and_passed_on_requests(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v58: "There he goes, off to the bathroom again" and "I'll pop the milk in the fridge
+    and leave the spare key by the front door" drove; "Can you video call the surgery itself, or
+    only Dr. Weber?" called; "…, and when you're done with that get yourself back on the charger"
+    lost two steps; "X asked me to get you to call Clara" asked nothing."""
+    assert read_request(text).steps == steps
+

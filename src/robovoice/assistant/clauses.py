@@ -23,9 +23,19 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
 # "…, and once that's done take yourself off for a charge": the step before, done, then this one
-_DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:that|this|it)(?:'s| is| has)(?: been)? "
+_DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:(?:that|this|it)(?:'s| is| has)(?: been)? "
                         # "… switch on the projector, and once it's warmed up call Anna" (text test v55)
-                        r"(?:done|finished|over|sorted|warmed up|ready|on|running)\s+", re.IGNORECASE)
+                        r"(?:done|finished|over|sorted|warmed up|ready|on|running)"
+                        # "…, and when you're done with that get yourself back on the charger" (text test v58)
+                        r"|you(?:'re| are|'ve| have)? (?:all )?(?:done|finished)"
+                        r"(?: with (?:that|this|it|them|her|him))?)"
+                        r"\s+(?!(?:with|that|this|it|them)\b)", re.IGNORECASE)
+# "Mrs Pritchard asked me to get you to call Clara": a request passed on through the speaker, the
+# robot's to do now (text test v58); its words are the request's own
+_RELAYED = re.compile(r"^(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|when|once)\b)(?:\w+\.? )?\w+ "
+                      r"(?:asked|told|wants|wanted|would like|'d like) me to "
+                      r"(?:(?:get|ask|tell) you to|have you)\s+(?=\w)",
+                      re.IGNORECASE)
 # "call her and, uh, then …": a conjunction left at the end by the comma after it (not at the
 # very end: "Hey Jarvis, go and" was cut off)
 _TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
@@ -70,5 +80,6 @@ def split_clauses(text: str) -> list[str]:
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
     text = _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", text))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
-    parts = [p for p in (_DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))) for p in _SPLIT.split(text)) if p]
+    parts = [p for p in (_RELAYED.sub("", _DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))))
+                         for p in _SPLIT.split(text)) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]

@@ -94,7 +94,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses = fixed
             continue
         bare = FILLER.sub("", part.strip()).strip()
-        if _OPINION.match(bare) and clauses and clauses[-1].kind is ClauseKind.REQUEST and \
+        if (_OPINION.match(bare) or _OR_ONLY.match(bare)) and clauses and clauses[-1].kind is ClauseKind.REQUEST and \
                 asked_as_question(clauses[-1].text):
             # "can you fit through the front door, do you reckon?": whether it could, not a request
             clauses[-1] = Clause(clauses[-1].text, ClauseKind.ABILITY)
@@ -279,7 +279,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
 _NAMED_IT = re.compile(r"^that'?s (?:it|the one|the word|the thing|what it'?s called)$", re.IGNORECASE)
 # "…, and once you've got her, …": the step before done, then what follows
-_BACK_ONLY = re.compile(r"^\s*(?:him|her|them|it|that|through)?\W*$", re.IGNORECASE)
+_BACK_ONLY = re.compile(r"^\s*(?:with )?(?:him|her|them|it|that|this|through)?\W*$", re.IGNORECASE)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
                     r"|(?:good|dear|bless) (?:me|grief|lord)|goodness)\b", re.IGNORECASE)  # "no, sorry, I'm muddled"
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
@@ -288,6 +288,7 @@ _ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of
                                r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 _FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
+_OR_ONLY = re.compile(r"^or (?:only|just|merely)\b", re.IGNORECASE)  # "can you call the surgery, or only Dr. Weber?"
 _SOMEONES = re.compile(r"^\s+(?:[A-Z]\w+|my \w+|the \w+)'s\b")  # "… see Anna's recipe": hers, not her
 _SEEN = re.compile(r"^\s+(?:something|it|that|this|them|the|a|an|my|our|some|what|how)\b")  # "… see something": a look
 # not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41)

@@ -43,7 +43,8 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
 
 # Putting a request off.
 LATER = re.compile(
-    r"\b(?:later|tomorrow|tonight|this evening|next week|one day|some day|someday|in an? (?:hour|minute|while)|"
+    r"\b(?:later|tomorrow|tonight|this evening|this afternoon|next week|one day|some day|someday|"
+    r"in an? (?:hour|minute|while)|"
     r"in \w+ (?:hours|minutes)|after (?:(?:his|her|my|our|your|their) )?(?:lunch|dinner|breakfast|tea|supper)|until)\b",
     re.IGNORECASE,
 )
@@ -264,7 +265,11 @@ def plain(text: str) -> str:
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
     text = _SO_KIND_AS_TO.sub("please", text)  # a courtesy, not a condition
+    text = _NEXT_DOOR.sub("nextdoor", text)  # "Clara next door": the neighbour's, no door of the home (text test v58)
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
+
+
+_NEXT_DOOR = re.compile(r"\bnext door\b", re.IGNORECASE)
 
 
 # a word said again after a hesitation or a search for the word ("Put the, um, the …", "switch on

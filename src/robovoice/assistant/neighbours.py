@@ -6,7 +6,7 @@ readings only a neighbour can give:
 - **a time at the end of "there and back"** ("walk to the front door and back every morning",
   "go to the kitchen and back tomorrow") is the time of the whole trip: the request before the
   "back" is not for now either (text test v53: a doctor's advice drove the robot);
-- **talk about the robot goes on** after "look at him go": a way said without a verb of its own
+- **talk about the robot goes on** after "look at him go" or "there he goes": a way said without a verb of its own
   ("Off to the bedroom like he owns the place", said while it drove) describes where it is going,
   it asks for nothing (text test v53).
 """
@@ -37,7 +37,20 @@ _HABIT = re.compile(r"\b(?:every (?:single )?(?:morning|day|night|evening|aftern
 _BACK = re.compile(r"^(?:and )?back\b", re.IGNORECASE)
 # the robot watched and talked about in the third person
 _WATCHED = re.compile(r"^(?:(?:just |oh )?(?:look|see|watch)(?: at)? (?:it|him|her|that thing|the robot|the wee thing)"
-                      r"(?: go(?:es)?| go on| move| off)?)\W*$", re.IGNORECASE)
+                      r"(?: go(?:es)?| go on| move| off)?"
+                      r"|(?:and )?(?:there|off|away) (?:he|she|it) goes(?: again)?)\W*$",
+                      re.IGNORECASE)
+# what the speaker will do next, said of themselves ("I'll pop the milk in the fridge"), no "you" in it
+_OWN_NEXT = re.compile(r"^(?:(?:ok(?:ay)?|right|so|well),? )?i(?:'ll| will| shall|'m (?:going to|about to)|'ve got to"
+                       r"| have to| must|'d better| better)\s+(?!.*\byou\b)(?!(?:need|want|like|ask|get)\b)\w+",
+                       re.IGNORECASE)
+_ASKED = re.compile(r"\b(?:for me|please|for us)\b", re.IGNORECASE)  # "I'll wait here and call Anna for me"
+# a tag that says the clause before it is news ("…, just so you know", audio test v49: misheard, it drove)
+_TOLD = re.compile(r"^(?:(?:just )?so (?:you know|you're aware)|for your information|fyi|(?:i'm )?just (?:saying|"
+                   r"letting you know))\W*$", re.IGNORECASE)
+# the first word of a way told, not asked ("off to the bedroom", "into the kitchen")
+_WAYS = frozenset({"off", "into", "to", "back", "away", "out", "up", "down", "round", "over", "through", "towards",
+                   "in", "across", "along"})
 
 
 def settle(clauses: list[Clause], text: str) -> list[Clause]:
@@ -56,10 +69,32 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         if clause.kind is ClauseKind.NEGATED and before.kind is ClauseKind.REQUEST and _BACK.match(said) \
                 and (LATER.search(said) or _HABIT.search(said)):
             out[i - 1] = Clause(before.text, ClauseKind.NEGATED)
+        elif before.kind is ClauseKind.REQUEST and _TOLD.match(clause.text.strip()) \
+                and _joined(before, clause, text, r"\s*[,\u2013\u2014-]+\s*"):
+            out[i - 1] = Clause(before.text, ClauseKind.STATEMENT)  # "…, just so you know": news, not asked
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    return _before_that_last(_done_too(out, text), text)
+    return _before_that_last(_done_too(_own_and(out, text), text), text)
+
+
+def _own_and(clauses: list[Clause], text: str) -> list[Clause]:
+    """"I'll pop the milk in the fridge and leave the key by the front door": the verb after the
+    "and" is the speaker's too, no request (text test v58), nor are the fragments that followed it."""
+    out = list(clauses)
+    for i in range(1, len(out)):
+        before, clause = out[i - 1], out[i]
+        said = words(clause.text)
+        if clause.kind is ClauseKind.REQUEST and before.kind is ClauseKind.STATEMENT and said \
+                and said[0] in IMPERATIVES and not _ASKED.search(clause.text) \
+                and _OWN_NEXT.match(FILLER.sub("", before.text.strip()).strip()) \
+                and _joined(before, clause, text, r"\s+and(?: then)?\s+"):
+            out[i] = Clause(clause.text, ClauseKind.STATEMENT)
+            for j in range(i + 1, len(out)):
+                if out[j].kind is not ClauseKind.REQUEST or not fragment(out[j].text):
+                    break
+                out[j] = Clause(out[j].text, ClauseKind.STATEMENT)
+    return out
 
 
 def _done_too(clauses: list[Clause], text: str) -> list[Clause]:
@@ -100,10 +135,17 @@ def _before_that_last(clauses: list[Clause], text: str) -> list[Clause]:
     return clauses
 
 
+def _joined(before: Clause, clause: Clause, text: str, between: str) -> bool:
+    """`before` and `clause` are said one after the other in `text`, with `between` (a pattern) between."""
+    return re.search(re.escape(before.text.strip()) + between + re.escape(clause.text.strip()), text) is not None
+
+
 def _described(text: str) -> bool:
-    """No verb of a request of its own and no "you": where the robot goes, told, not asked."""
+    """A way with no verb of a request of its own and no "you" ("off to the bedroom …"): where
+    the robot goes, told, not asked. A bare place ("Bedroom, please.") is still asked."""
     said = words(text)
-    return bool(said) and said[0] not in IMPERATIVES and "you" not in said and "please" not in said
+    return bool(said) and said[0] in _WAYS and "you" not in said and "please" not in said
+
 
 
 def tag_asks(before: Clause, tag: str) -> bool:
