@@ -378,3 +378,14 @@ def test_next_door_names_the_neighbour_not_the_front_door_and_a_picture_thing_is
     assert refusal(off, SPECS["set_projector_power"], {"on": False}, (), VOICE, tools=tools) is None
     assert refusal(read_request("Take a picture of the hallway."), SPECS["set_projector_power"], {"on": True}, (),
                    VOICE, tools=tools) is not None
+
+
+def test_bye_is_not_by_and_off_the_phone_ends_the_call() -> None:
+    """"wait by the front door" let the end of a call through ("bye" and "by" shared a stem);
+    "get off that phone" fitted no tool (text test v59)."""
+    tools = list(SPECS.values())
+    assert stem("bye") != stem("by")
+    wait = read_request("Go and wait by the front door.")
+    assert refusal(wait, SPECS["end_video_call"], {}, (), VOICE, tools=tools) is not None
+    off = read_request("Get off that phone, then come into the kitchen.")
+    assert refusal(off, SPECS["end_video_call"], {}, (), VOICE, tools=tools) is None

@@ -1084,3 +1084,26 @@ def test_watched_own_plans_scope_questions_and_passed_on_requests(text: str, ste
     lost two steps; "X asked me to get you to call Clara" asked nothing."""
     assert read_request(text).steps == steps
 
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Go on so, ring Anna for me.", ("ring Anna for me",)),  # the urging is no step
+    ("call Clara after u put the projector on", ("put the projector on", "call Clara")),  # one breath, done first
+    ("go to the kitchen after you've rung Ben. ty", ("ring Ben", "go to the kitchen")),
+    ("Head to the bedroom once you've phoned Clara.", ("phone Clara", "Head to the bedroom")),
+    ("Don't call Clara after you put the projector on.", ()),
+    ("I'll ring you after you've charged.", ()),
+    ("vid call Anna pls", ("video call Anna please",)),
+    ("once ur in the kitchen video call Clara", ("go to the kitchen", "video call Clara")),  # no comma
+    ("Once you're in the living room put the projector on.", ("go to the living room", "put the projector on")),
+    ("once you're in the kitchen I'll be happy", ()),
+    ("wait no keep going, I don't want u to stop", ()),  # a stop not wanted
+    ("Call Ben. Before that, the kitchen.", ("the kitchen", "Call Ben")),  # the place after "before that"
+    ("Go to the front door, and once you're done there come back and wait in the hallway.",
+     ("Go to the front door", "come back wait in the hallway")),  # where to wait is where to go
+])
+def test_one_breath_orders_texting_and_a_stop_not_wanted(text: str, steps: tuple[str, ...]) -> None:
+    """Text tests v59 and v60: "call Clara after u put the projector on", "… after you've rung Ben",
+    "once ur in the kitchen video call Clara" lost a step or its order; "I don't want u to stop"
+    cancelled the drive; "… come back and wait in the hallway" ran the robot's stop."""
+    assert read_request(text).steps == steps

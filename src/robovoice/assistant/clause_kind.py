@@ -166,7 +166,9 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.STATEMENT
     if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)):
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
-    if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)|(?!you\b)\w+ "
+    if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)"
+                                               # "I don't want you to stop" (text test v59)
+                                               r"(?: (?:want|need|mean|ask|tell)\w* (?:you )?to)?|(?!you\b)\w+ "
                                                r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered) \
             and not _WAS_GOING_TO.search(lowered):
         return ClauseKind.REQUEST  # a stop is always a request

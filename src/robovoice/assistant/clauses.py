@@ -28,8 +28,8 @@ _DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:(?:that|this|it)(?:
                         r"(?:done|finished|over|sorted|warmed up|ready|on|running)"
                         # "…, and when you're done with that get yourself back on the charger" (text test v58)
                         r"|you(?:'re| are|'ve| have)? (?:all )?(?:done|finished)"
-                        r"(?: with (?:that|this|it|them|her|him))?)"
-                        r"\s+(?!(?:with|that|this|it|them)\b)", re.IGNORECASE)
+                        r"(?: with (?:that|this|it|them|her|him)| there| here| in there)?)"
+                        r"\s+(?!(?:with|that|this|it|them|there|here|in)\b)", re.IGNORECASE)
 # "Mrs Pritchard asked me to get you to call Clara": a request passed on through the speaker, the
 # robot's to do now (text test v58); its words are the request's own
 _RELAYED = re.compile(r"^(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|when|once)\b)(?:\w+\.? )?\w+ "
@@ -48,6 +48,10 @@ _TURN_AND = re.compile(r"\bturn (?:round|around|back)\s+and\s+(?=(?:go|head|come
 # "nice and big", "good and loud": one manner, not two steps (text test v51)
 _NICE_AND = re.compile(r"\b(nice|good|lovely)\s+and\s+(?=(?:big|bright|loud|large|clear|close|wide|sharp)\b)",
                        re.IGNORECASE)
+# "come back and wait in the hallway": where to wait is where to go, one request (text test v60: the
+# robot's stop ran for its "wait")
+_AND_WAIT = re.compile(r"\b((?:go|come|head|get|pop|nip) (?:back|over|round|through|down|up))\s+and\s+"
+                       r"(?=(?:wait|stay|sit|park)\s+(?:in|at|by|near|inside|outside|beside)\b)", re.IGNORECASE)
 _GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
 
 
@@ -78,7 +82,7 @@ _ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+
 
 def split_clauses(text: str) -> list[str]:
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
-    text = _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", text))
+    text = _AND_WAIT.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", text)))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
     parts = [p for p in (_RELAYED.sub("", _DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))))
                          for p in _SPLIT.split(text)) if p]

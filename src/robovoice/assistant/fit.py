@@ -60,7 +60,7 @@ def stem(word: str) -> str:
             if len(word) > 2 and word[-1] == word[-2] and word[-1] not in "lsz":
                 word = word[:-1]  # "plugg" → "plug", but "call" stays
             break
-    return word.removesuffix("e") if len(word) > 2 else word
+    return word.removesuffix("e") if len(word) > 2 and word != "bye" else word  # "bye" is not "by"
 
 
 def _stems(text: str) -> list[str]:

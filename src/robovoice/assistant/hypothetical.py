@@ -119,6 +119,11 @@ ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|
                      r"(?: yourself| over| down| up| through| across| back)*"
                      r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?)\s*$", re.IGNORECASE)
 
+# "call Clara after you put the projector on", "go to the kitchen after you've rung Ben" (text
+# test v59), in one breath: what comes after "after you" is done first (`SEQUENCE`, `intent`)
+AFTER_YOU_DID = re.compile(r"(?<=\w)\s+((?:after|once|as soon as) you(?:'ve| have)? "
+                           r"(?!(?:get|go|arrive|are|can|could|do|did|like|want|wish|need|feel|think)\b)\w+ \w.*)$",
+                           re.IGNORECASE)
 # "Switch the projector off before you head to the bedroom" (text test v26), in one breath:
 # what comes after "before you" is the next step ("before you ring Clara, …" said first puts
 # the call after what follows: `intent`); two words at least ("… before you forget" asks nothing).

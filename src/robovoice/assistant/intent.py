@@ -31,8 +31,6 @@ from robovoice.assistant.amend import amend, named_back, repeats
 from robovoice.assistant.clause_kind import SEE_IF, classify
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
-    ARRIVED,
-    BEFORE_YOU_DO,
     CONDITION,
     COURTESY,
     EVENT_FIRST,
@@ -69,6 +67,7 @@ from robovoice.assistant.lexicon import (
 )
 from robovoice.assistant.neighbours import settle, tag_asks
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
+from robovoice.assistant.said_order import arrival_first
 
 
 def read_request(text: str, *, answering: bool = False) -> Intent:
@@ -84,7 +83,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
     amending = False  # right after a bare "sorry" or "I mean" (amend)
     text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
-    for part in _actually_only(_arrival_first(split_clauses(text))):
+    for part in _actually_only(arrival_first(split_clauses(text))):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if (at := _last_said(clauses)) is not None and tag_asks(clauses[at], part):  # "Bedroom, please."
                 clauses[at] = Clause(clauses[at].text, ClauseKind.REQUEST)  # "would you ever …, please?"
@@ -201,7 +200,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses and _FIRST_ALONE.match(clauses[-1].text.strip()) is not None and fragment(part))  # "First, the …"
         you_do = YOU_DO.match(bare) and IMPERATIVE_SHAPE.match(bare[4:])  # "…, then you go to the hallway"
         if kind is ClauseKind.STATEMENT and (ordered or ((fragment(part) or you_do) and (
-                corrected or (previous is not None and previous.kind is ClauseKind.REQUEST)))
+                corrected or (front is not None and _NAMED.match(bare))  # "Before that, the kitchen."
+                or (previous is not None and previous.kind is ClauseKind.REQUEST)))
                 or (corrected and fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
         if kind is ClauseKind.STATEMENT and previous is not None and previous.kind is ClauseKind.REQUEST \
@@ -301,7 +301,8 @@ _NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 _BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
-_URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now)?$", re.IGNORECASE)
+_NAMED = re.compile(r"^(?:the|my|your)\s", re.IGNORECASE)
+_URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now| so)?$", re.IGNORECASE)  # "go on so" (v59)
 _PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
 _AFTER_YOU = re.compile(r"^(?:after|once|as soon as) you (?!(?:'|are|get|go there|arrive)\b)(\w+ \w.*)$", re.IGNORECASE)
 _FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
@@ -316,28 +317,6 @@ _BACK_TO_SOMEONE = re.compile(r"(?!(?:please |kindly |just |now )*(?:go|come|hea
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
 
 
-def _arrival_first(parts: list[str]) -> list[str]:
-    """A request that ends on where the robot will have got to ("give Anna a ring once you've
-    made it to the bedroom") as two clauses in the order said: the arrival (a `SEQUENCE`
-    clause, which goes first) after the request; one that ends on what it does next ("switch
-    the projector off before you head to the bedroom") as that request, then the next."""
-    out: list[str] = []
-    for part in parts:
-        if (first := _BEFORE_YOU_DO_IT.search(part)) and out and \
-                classify(part[:first.start()]) is ClauseKind.REQUEST and classify(out[-1]) is ClauseKind.REQUEST:
-            out.insert(len(out) - 1, part[:first.start()])  # "ring him, but come here before you do"
-            continue
-        late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part)
-        if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:  # "once you're in X": X first
-            there = re.match(r"\w+ you(?:'re| are) ", late.group(1)) is not None  # (text test v57)
-            out += [late.group(1), part[:late.start()]] if there else [part[:late.start()], late.group(1)]
-        else:
-            out.append(part)
-    return out
-
-
-# "…, but come into the living room before you do": before the request said just before (text test v51)
-_BEFORE_YOU_DO_IT = re.compile(r"\s+before you do(?: (?:it|that|so))?\s*$", re.IGNORECASE)
 # a time said before, held to (audio test v42: "after his lunch you can …, but not before")
 _NOT_BEFORE = re.compile(r"^(?:but )?(?:not (?:before|until then|till then|yet)|no sooner)[\s.!]*$", re.IGNORECASE)
 _ACTUALLY = re.compile(r"^\s*actually\b[\s,]*", re.IGNORECASE)

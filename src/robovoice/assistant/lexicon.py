@@ -107,7 +107,8 @@ NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "on
 
 _IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
               "taken": "take", "driven": "drive", "done": "do", "found": "find", "told": "tell", "shown": "show",
-              "brought": "bring", "left": "leave", "run": "run", "come": "come", "put": "put", "shut": "shut"}
+              "brought": "bring", "left": "leave", "run": "run", "come": "come", "put": "put", "shut": "shut",
+              "phoned": "phone", "rang": "ring", "dialled": "dial", "switched": "switch"}
 
 
 def base_form(participle: str) -> str:
@@ -241,7 +242,11 @@ def unfinished(clause: str) -> bool:
 _TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz": "please", "thx": "thanks",
            "n": "and", "rn": "right now", "bot": "robot", "ngl": "honestly", "tbh": "honestly", "imo": "honestly",
            "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really", "nah": "no", "naw": "no",
-           "wanna": "want to", "gonna": "going to", "gotta": "got to"}  # "after that I wanna call Ben" (text v56)
+           "wanna": "want to", "gonna": "going to", "gotta": "got to",  # "after that I wanna call Ben" (text v56)
+           "ty": "thank you", "vid": "video"}  # "vid call Ben", "… rung Ben. ty" (text v60, v59)
+# "once ur in the kitchen": you're, before where or how it is (text test v60); else "your"
+_UR_ARE = re.compile(r"\bur(?= (?:in|at|on|by|there|here|back|done|finished|going|not|so|a|an|the|nearly|almost"
+                     r"|\w+ing)\b)", re.IGNORECASE)
 _TEXTED_WORD = re.compile(r"\b(" + "|".join(_TEXTED) + r")\b", re.IGNORECASE)
 _STRETCHED = re.compile(r"([a-z])\1{2,}", re.IGNORECASE)  # a letter said three times or more ("pleeease")
 
@@ -258,7 +263,7 @@ _QUOTE = re.compile(r"(?<!\w)['\u2018\u2019\"\u201c\u201d]+|['\u2018\u2019\"\u20
 def plain(text: str) -> str:
     """`text` with texting shorthand spelled out, stretched letters said once and a checklist's
     numbers said as order words ("first", "then")."""
-    text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _STRETCHED.sub(r"\1", text))
+    text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _UR_ARE.sub("you're", _STRETCHED.sub(r"\1", text)))
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
     text = _QUOTE.sub("", text)  # "Step four: 'send the robot to the dock'": the words read out
     # "Put the, um, the picture thing on": one clause (text test v38)

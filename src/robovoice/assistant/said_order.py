@@ -1,0 +1,58 @@
+"""Steps said in one breath, cut where the order they are done in is said (`intent.read_request`
+reads each part): "give Anna a ring once you've made it to the bedroom", "switch the projector
+off before you head to the bedroom", "call Clara after you put the projector on", "once you're
+in the kitchen video call Clara"."""
+
+from __future__ import annotations
+
+import re
+
+from robovoice.assistant.clause_kind import classify
+from robovoice.assistant.hypothetical import AFTER_YOU_DID, ARRIVED, BEFORE_YOU_DO
+from robovoice.assistant.reading import ClauseKind
+
+# "…, but come into the living room before you do": before the request said just before (text test v51)
+_BEFORE_YOU_DO_IT = re.compile(r"\s+before you do(?: (?:it|that|so))?\s*$", re.IGNORECASE)
+# "once you're in the kitchen video call Clara" with no comma (text test v60): being there, then the
+# request; the place one or two words ("the living room")
+_ONCE_IN = re.compile(r"^((?:once|as soon as) you(?:'re| are) (?:in|at|by|inside) (?:the|my|your) (\w+)(?: (\w+))?)"
+                      r"\s+(.+)$", re.IGNORECASE)
+
+
+def arrival_first(parts: list[str]) -> list[str]:
+    """A request that ends on where the robot will have got to ("give Anna a ring once you've
+    made it to the bedroom") as two clauses in the order said: the arrival (a `SEQUENCE`
+    clause, which goes first) after the request; one that ends on what it does next ("switch
+    the projector off before you head to the bedroom") as that request, then the next; one that
+    begins on where it will be, with no comma, as that and the request."""
+    out: list[str] = []
+    for part in parts:
+        if (first := _BEFORE_YOU_DO_IT.search(part)) and out and \
+                classify(part[:first.start()]) is ClauseKind.REQUEST and classify(out[-1]) is ClauseKind.REQUEST:
+            out.insert(len(out) - 1, part[:first.start()])  # "ring him, but come here before you do"
+            continue
+        if (there := _ONCE_IN.match(part)) is not None and (cut := _once_in(there)) is not None:
+            out += cut
+            continue
+        late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part) or AFTER_YOU_DID.search(part)
+        if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:  # "once you're in X": X first
+            there_first = re.match(r"\w+ you(?:'re| are) ", late.group(1)) is not None  # (text test v57)
+            out += [late.group(1), part[:late.start()]] if there_first else [part[:late.start()], late.group(1)]
+        else:
+            out.append(part)
+    return out
+
+
+def _once_in(there: re.Match[str]) -> list[str] | None:
+    """"once you're in the kitchen" and the request after it; the place is two words when its
+    second is a kind of place ("the living room", "the front door")."""
+    whole, second, rest = there.group(1), there.group(3), there.group(4)
+    if second is not None and second.lower() in _PLACE_NOUNS:
+        return [whole, rest] if classify(rest) is ClauseKind.REQUEST else None
+    after = f"{second} {rest}" if second is not None else rest
+    if classify(after) is ClauseKind.REQUEST:
+        return [whole[:len(whole) - len(second)].rstrip() if second is not None else whole, after]
+    return None
+
+
+_PLACE_NOUNS = frozenset({"room", "door", "dock", "station", "hall", "way", "area", "corner"})
