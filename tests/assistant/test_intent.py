@@ -1107,3 +1107,20 @@ def test_one_breath_orders_texting_and_a_stop_not_wanted(text: str, steps: tuple
     "once ur in the kitchen video call Clara" lost a step or its order; "I don't want u to stop"
     cancelled the drive; "… come back and wait in the hallway" ran the robot's stop."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Chalo, the kitchen smells lovely. Priya beta, come and eat something.", ()),  # said to a person
+    ("Tom love, go and put the kettle on.", ()),
+    ("Jarvis love, go to the kitchen.", ("go to the kitchen",)),  # the robot's own name
+    ("Ji, tell it to go to the bedroom, no? My shawl is there.", ("go to the bedroom",)),  # relayed; a tag
+    ("Don't tell it to go to the kitchen.", ()),
+    ("Change of plan, not the kitchen. Living room, and ring Clara.", ("Living room", "ring Clara")),
+    ("Not the kitchen. Bathroom.", ("Bathroom",)),
+])
+def test_endearments_relays_by_someone_in_the_room_and_the_place_after_not_that(
+        text: str, steps: tuple[str, ...]) -> None:
+    """Text test v61: "Priya beta, come and eat something …" drove to the kitchen; "tell it to go to
+    the bedroom, no?" was withdrawn by its tag; "not the kitchen. Living room, and ring Clara …"
+    lost the drive."""
+    assert read_request(text).steps == steps

@@ -24,7 +24,10 @@ _SENTENCE = re.compile(r"(?<!\bDr\.)(?<!\bMr\.)(?<!\bMrs\.)(?<!\bMs\.)(?<!\bSt\.
 # (Not after "hey": "Hey Travis, …" is the robot's wake word misheard.)
 _CALLED = re.compile(
     r"^(?P<before>(?i:(?:no|oh|ah|sorry|hang on|hold on|wait|look|listen|now|right|ok|okay|well)[\s,!]+)*)"
-    r"(?P<name>(?:(?:Dr|Mr|Mrs|Ms|Miss|Doctor|Nurse|Auntie|Aunt|Uncle)\.? )?[A-Za-z][a-z]+)\s*,\s*(?P<rest>\S.*)$")
+    r"(?P<name>(?:(?:Dr|Mr|Mrs|Ms|Miss|Doctor|Nurse|Auntie|Aunt|Uncle)\.? )?[A-Za-z][a-z]+)"
+    # "Priya beta, come and eat something" (text test v61): a name with a word of endearment is a person
+    r"(?P<dear> (?i:beta|beti|ji|love|dear|darling|pet|sweetheart|hen|bach|cariad|lass|lad|my dear))?"
+    r"\s*,\s*(?P<rest>\S.*)$")
 # Whom the person may talk to beside the robot, by what they call them: said to one of these,
 # even a request ("Mum, can you put the kettle on?") is not for the robot.
 _FAMILY = frozenset({
@@ -48,7 +51,7 @@ _NOT_A_PERSON = frozenset({
     "shh", "shush", "psst", "alas", "ouch", "yay", "hooray", "welp", "meh", "aww", "aw", "viewers", "kitchen",
     "bedroom", "bathroom", "hallway", "hall", "lounge", "living", "front", "door", "dock", "charger", "balcony",
     "garden", "projector", "battery", "camera", "call", "telly", "tv", "lights", "everyone", "everybody", "folks",
-    "guys",
+    "guys", "chalo", "arre", "arey", "acha", "achha", "accha", "haan", "bas", "yaar", "oye", "hai",
 })
 # What follows a name that is still said to the robot: a list of whom ("Anna, then Ben"), a plea.
 _STILL_ASKING = re.compile(r"^(?:then|and|too|as well|please|now|first|next|after|i mean|i meant)\b", re.IGNORECASE)
@@ -102,7 +105,7 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
         return False  # (a spoken stop is always for the robot: it may be what keeps someone safe)
     if _TO_THEM.match(first):
         return name[0].isupper() or last in _FAMILY
-    return (last in _FAMILY or (robot_called and name[0].isupper())) and (
+    return (last in _FAMILY or called.group("dear") is not None or (robot_called and name[0].isupper())) and (
         first.split()[0].lower() in IMPERATIVES or not fragment(first))
 
 

@@ -32,9 +32,12 @@ _DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:(?:that|this|it)(?:
                         r"\s+(?!(?:with|that|this|it|them|there|here|in)\b)", re.IGNORECASE)
 # "Mrs Pritchard asked me to get you to call Clara": a request passed on through the speaker, the
 # robot's to do now (text test v58); its words are the request's own
-_RELAYED = re.compile(r"^(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|when|once)\b)(?:\w+\.? )?\w+ "
+_RELAYED = re.compile(r"^(?:(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|when|once)\b)(?:\w+\.? )?\w+ "
                       r"(?:asked|told|wants|wanted|would like|'d like) me to "
-                      r"(?:(?:get|ask|tell) you to|have you)\s+(?=\w)",
+                      r"(?:(?:get|ask|tell) you to|have you)"
+                      # … or by someone else in the room: "tell it to go to the bedroom" (text test v61)
+                      r"|(?:(?:please|kindly|just|go on) )?(?:tell|ask) (?:it|the robot|the machine|jarvis) to)"
+                      r"\s+(?=\w)",
                       re.IGNORECASE)
 # "call her and, uh, then …": a conjunction left at the end by the comma after it (not at the
 # very end: "Hey Jarvis, go and" was cut off)

@@ -270,10 +270,12 @@ def plain(text: str) -> str:
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
     text = _SO_KIND_AS_TO.sub("please", text)  # a courtesy, not a condition
+    text = _NO_TAG.sub(".", text)  # "tell it to go to the bedroom, no?": a tag asking agreement (text test v61)
     text = _NEXT_DOOR.sub("nextdoor", text)  # "Clara next door": the neighbour's, no door of the home (text test v58)
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 
+_NO_TAG = re.compile(r"(?<=\w),\s*no\?", re.IGNORECASE)
 _NEXT_DOOR = re.compile(r"\bnext door\b", re.IGNORECASE)
 
 

@@ -48,6 +48,7 @@ _ASKED = re.compile(r"\b(?:for me|please|for us)\b", re.IGNORECASE)  # "I'll wai
 # a tag that says the clause before it is news ("…, just so you know", audio test v49: misheard, it drove)
 _TOLD = re.compile(r"^(?:(?:just )?so (?:you know|you're aware)|for your information|fyi|(?:i'm )?just (?:saying|"
                    r"letting you know))\W*$", re.IGNORECASE)
+_NOT_THAT = re.compile(r"^(?:(?:no|but|oh),? )*not (?:the|my|your|to the) \w+(?: \w+)?$", re.IGNORECASE)
 # the first word of a way told, not asked ("off to the bedroom", "into the kitchen")
 _WAYS = frozenset({"off", "into", "to", "back", "away", "out", "up", "down", "round", "over", "through", "towards",
                    "in", "across", "along"})
@@ -75,7 +76,22 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    return _before_that_last(_done_too(_own_and(out, text), text), text)
+    return _before_that_last(_done_too(_own_and(_not_that_but(out), text), text), text)
+
+
+def _not_that_but(clauses: list[Clause]) -> list[Clause]:
+    """"Change of plan, not the kitchen. Living room, and ring Clara …": the place said right after
+    "not the X" is the one meant, when nothing follows it or a request does (text test v61); not
+    "Not the kitchen. The bathroom, I think, is where I left them."."""
+    out = list(clauses)
+    for i in range(1, len(out)):
+        said, last = out[i], i + 1 == len(out)
+        if said.kind is ClauseKind.STATEMENT and fragment(said.text) and out[i - 1].kind is ClauseKind.NEGATED \
+                and _NOT_THAT.match(out[i - 1].text.strip()) and (last or out[i + 1].kind is ClauseKind.REQUEST) \
+                and not any(c.kind is ClauseKind.REQUEST and set(words(said.text)) - {"the", "my", "your"}
+                            <= set(words(c.text)) for c in out[:i]):  # "Go to the X, not the Y, the X": said again
+            out[i] = Clause(said.text, ClauseKind.REQUEST)
+    return out
 
 
 def _own_and(clauses: list[Clause], text: str) -> list[Clause]:
