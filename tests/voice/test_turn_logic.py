@@ -216,3 +216,24 @@ def test_own_words_are_recognised_for_a_while() -> None:
     assert not own.contains("Stop the robot!")
     now[0] = 20.0
     assert not own.contains("Stop.")
+
+
+def test_the_robots_own_words_misheard_as_a_stop_are_its_own_voice() -> None:
+    """Audio test v52: during a drive the robot's "All right, I won't." came back through the
+    microphone as "Alright, hold on." and stopped the robot. Misheard own words are its own voice
+    only when the utterance was heard mostly during playback and no louder than its echo."""
+    from types import SimpleNamespace
+
+    from robovoice.voice.stopping import StopController
+
+    now = [0.0]
+    own = OwnWords(keep_s=15.0, clock=lambda: now[0])
+    own.add("All right, I won't.")
+    assert own.resembles("Alright, hold on.") and not own.resembles("Stop!") and not own.resembles("wait")
+    checks = SimpleNamespace(own_words=own)
+    assert StopController._misheard_own(checks, 0.9, False, "Alright, hold on.")  # type: ignore[arg-type]
+    assert not StopController._misheard_own(checks, 0.9, True, "Alright, hold on.")  # type: ignore[arg-type]
+    assert not StopController._misheard_own(checks, 0.2, False, "Alright, hold on.")  # type: ignore[arg-type]
+    assert not StopController._misheard_own(checks, 0.9, False, "Stop the robot!")  # type: ignore[arg-type]
+    now[0] = 20.0
+    assert not own.resembles("Alright, hold on.")

@@ -80,6 +80,8 @@ class HeardPause:
     at: float
     audio: AudioChunk
     end_early: Callable[[float], None] = field(default=lambda _silence_s: None, compare=False, repr=False)
+    playback_share: float = 0.0  # as for `HeardUtterance`, over the utterance so far
+    near_end: bool = True
 
 
 @dataclass(frozen=True, slots=True)
@@ -320,7 +322,8 @@ class Listener:
         def end_early(silence_s: float) -> None:
             endpointer.allow_early_end(onset, now, silence_s)
 
-        return HeardPause(onset, now, audio, end_early)
+        share, near = self.meter.judge(onset, now)
+        return HeardPause(onset, now, audio, end_early, share, near)
 
     def _score_playback(self, ref: np.ndarray, t1: float) -> None:
         """Run the playback through its own wake word detector while anything plays."""

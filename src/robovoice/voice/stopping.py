@@ -122,7 +122,8 @@ class StopController:
             return
         transcript, took_ms = transcription.result()
         text = transcript.text
-        if not says_stop(strip_wake_words(text, self.config.wake_phrase)) or self.own_words.contains(text):
+        if not says_stop(strip_wake_words(text, self.config.wake_phrase)) or self.own_words.contains(text) \
+                or self._misheard_own(pause.playback_share, pause.near_end, text):
             return
         metrics.stt_ms += took_ms
         metrics.mark("transcript")
@@ -147,11 +148,18 @@ class StopController:
         at a pause), else why not ("not_a_stop", "own_voice"). `turn`: as for `stop_once`."""
         if not says_stop(strip_wake_words(text, self.config.wake_phrase)):
             return "not_a_stop"
-        if utt.playback_share > 0.3 and self.own_words.contains(text):
-            return "own_voice"  # the robot heard itself
+        if (utt.playback_share > 0.3 and self.own_words.contains(text)) \
+                or self._misheard_own(utt.playback_share, utt.near_end, text):
+            return "own_voice"  # the robot heard itself, in its words or misheard
         if not await self.stop_once(utt.start, text, utt.end, metrics, turn):
             await report_ignored(self.emit, self.stats, "stopped_at_pause", utt, text)  # `check_pause` did
         return None
+
+    def _misheard_own(self, playback_share: float, near_end: bool, text: str) -> bool:
+        """The robot's own voice, misheard as a stop ("Alright, hold on." for its "All right, I
+        won't.", audio test v52, during a drive): heard mostly while it played, no louder than its
+        echo, and reading like what it said. A person's "stop" over its voice fails at least one."""
+        return playback_share > 0.5 and not near_end and self.own_words.resembles(text)
 
     async def stop(self, text: str, at: float, turn: int, metrics: TurnMetrics, spare: float | None = None,
                    at_pause: bool = False) -> None:

@@ -216,3 +216,18 @@ class OwnWords:
             return False
         now = self._clock()
         return any(now - t <= self._keep_s and f" {words} " in f" {said} " for t, said in self._said)
+
+    def resembles(self, heard: str, ratio: float = 0.6) -> bool:
+        """Whether `heard` reads like the start of something the robot said lately, misheard:
+        "Alright, hold on." for its "All right, I won't." (audio test v52). Letters compared
+        without spaces, over as much of what it said as was heard."""
+        letters = normalise(heard).replace(" ", "")
+        if not letters:
+            return False
+        now = self._clock()
+        return any(now - t <= self._keep_s and _likeness(letters, said.replace(" ", "")[:len(letters) + 4]) >= ratio
+                   for t, said in self._said)
+
+
+def _likeness(heard: str, said: str) -> float:
+    return difflib.SequenceMatcher(None, heard, said).ratio()
