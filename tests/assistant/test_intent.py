@@ -1124,3 +1124,11 @@ def test_endearments_relays_by_someone_in_the_room_and_the_place_after_not_that(
     the bedroom, no?" was withdrawn by its tag; "not the kitchen. Living room, and ring Clara …"
     lost the drive."""
     assert read_request(text).steps == steps
+
+
+def test_away_and_is_go_and() -> None:
+    """Old text v51, in the final read run: "…, away and wait by the front door for her" ran the
+    robot's stop ("wait"); "away and" is Scots for "go and". "far away and …" is no request."""
+    assert read_request("That's Clara, away and wait by the front door for her.").steps == (
+        "go wait by the front door for her",)
+    assert read_request("I live far away and rarely ring Anna.").steps == ()

@@ -55,6 +55,8 @@ _NICE_AND = re.compile(r"\b(nice|good|lovely)\s+and\s+(?=(?:big|bright|loud|larg
 # robot's stop ran for its "wait")
 _AND_WAIT = re.compile(r"\b((?:go|come|head|get|pop|nip) (?:back|over|round|through|down|up))\s+and\s+"
                        r"(?=(?:wait|stay|sit|park)\s+(?:in|at|by|near|inside|outside|beside)\b)", re.IGNORECASE)
+# "…, away and wait by the front door": Scots for "go and" (text test v51: the robot's stop ran)
+_AWAY_AND = re.compile(r"(?:(?<=^)|(?<=[,.;!?] ))away\s+and\s+(?=\w)", re.IGNORECASE)
 _GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
 
 
@@ -85,7 +87,7 @@ _ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+
 
 def split_clauses(text: str) -> list[str]:
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
-    text = _AND_WAIT.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", text)))
+    text = _AND_WAIT.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", _AWAY_AND.sub("go and ", text))))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
     parts = [p for p in (_RELAYED.sub("", _DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))))
                          for p in _SPLIT.split(text)) if p]
