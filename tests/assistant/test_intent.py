@@ -1132,3 +1132,10 @@ def test_away_and_is_go_and() -> None:
     assert read_request("That's Clara, away and wait by the front door for her.").steps == (
         "go wait by the front door for her",)
     assert read_request("I live far away and rarely ring Anna.").steps == ()
+
+
+def test_once_youve_hung_up_is_the_end_of_the_call_first() -> None:
+    """Text test v62: "Once you've hung up with Anna, flick the projector on …" lost the end of
+    the call ("hung" had no base form)."""
+    assert read_request("Once you've hung up with Ben, head into the kitchen.").steps == (
+        "hang up with Ben", "head into the kitchen")

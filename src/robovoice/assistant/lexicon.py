@@ -108,7 +108,7 @@ NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "on
 _IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
               "taken": "take", "driven": "drive", "done": "do", "found": "find", "told": "tell", "shown": "show",
               "brought": "bring", "left": "leave", "run": "run", "come": "come", "put": "put", "shut": "shut",
-              "phoned": "phone", "rang": "ring", "dialled": "dial", "switched": "switch"}
+              "phoned": "phone", "rang": "ring", "dialled": "dial", "switched": "switch", "hung": "hang"}
 
 
 def base_form(participle: str) -> str:
