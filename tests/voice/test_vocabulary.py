@@ -91,6 +91,10 @@ def test_and_the_call_alone_is_end_the_call_again() -> None:
     assert restore_end("and the kitchen.", hint) == "and the kitchen."
     assert restore_end("Go to the kitchen and the call.", hint) == "Go to the kitchen and the call."
     assert restore_end("And the call.", command_hint("hey jarvis", [NAVIGATE, CALL])) == "And the call."
+    # … or with the next step asked after it (audio test v53), not a story that goes on
+    assert restore_end("and the call and then head back to your dock.", hint) == (
+        "End the call and then head back to your dock.")
+    assert restore_end("and the call and then he rang off.", hint) == "and the call and then he rang off."
 
 
 def test_bring_before_a_name_the_robot_can_call_is_ring_again() -> None:

@@ -97,6 +97,10 @@ def restore_titles(text: str, hint: str) -> str:
 # (CI, 27 Nov 2026), and the words then read as talk. Only a whole utterance of "and" plus an
 # end_* tool's subject words is restored: "and the call, was it long?" stays as heard.
 _END_ACTION = re.compile(r"\bend((?: [a-z]+)+)(?=[,.])")
+# … or one followed by the next step asked ("and the call and then head back to your dock", audio
+# test v53): a verb of the robot's after "then"; "and the call and then he rang off" stays as heard
+_NEXT_STEP = (r",?\s+(?:and\s+)?then\s+(?=(?:head|go|come|drive|move|get|take|turn|switch|put|pop|nip|call|ring|"
+              r"phone|return|back)\b)")
 
 
 def restore_end(text: str, hint: str) -> str:
@@ -105,7 +109,7 @@ def restore_end(text: str, hint: str) -> str:
     for subject in _END_ACTION.findall(hint):
         words = subject.split()
         tail = r"(?:the\s+)?" + "".join(rf"(?:{re.escape(w)}\s+)?" for w in words[:-1]) + re.escape(words[-1])
-        restored = re.sub(rf"^\s*and\s+({tail})(\s*(?:,?\s*please)?[.!]*\s*)$", r"End \1\2", text,
+        restored = re.sub(rf"^\s*and\s+({tail})(\s*(?:,?\s*please)?[.!]*\s*$|{_NEXT_STEP})", r"End \1\2", text,
                           flags=re.IGNORECASE)
         if restored != text:
             return restored
