@@ -18,6 +18,7 @@ import re
 from robovoice.assistant.amend import go_list
 from robovoice.assistant.clause_kind import classify
 from robovoice.assistant.lexicon import (
+    ARTICLES,
     ASKING_VERBS,
     FILLER,
     HASTE,
@@ -88,8 +89,8 @@ def _not_that_but(clauses: list[Clause]) -> list[Clause]:
         said, last = out[i], i + 1 == len(out)
         if said.kind is ClauseKind.STATEMENT and fragment(said.text) and out[i - 1].kind is ClauseKind.NEGATED \
                 and _NOT_THAT.match(out[i - 1].text.strip()) and (last or out[i + 1].kind is ClauseKind.REQUEST) \
-                and not any(c.kind is ClauseKind.REQUEST and set(words(said.text)) - {"the", "my", "your"}
-                            <= set(words(c.text)) for c in out[:i]):  # "Go to the X, not the Y, the X": said again
+                and not any(c.kind is ClauseKind.REQUEST and set(words(said.text)) - ARTICLES <= set(words(c.text))
+                            for c in out[:i]):  # "Go to the X, not the Y, the X": said again
             out[i] = Clause(said.text, ClauseKind.REQUEST)
     return out
 
@@ -145,7 +146,7 @@ def _before_that_last(clauses: list[Clause], text: str) -> list[Clause]:
         if i and _BEFORE_THAT.match(FILLER.sub("", clause.text.strip()).strip()) and asked and asked[0] < i - 1 \
                 and clauses[i - 1].kind is ClauseKind.REQUEST \
                 and all(text.find(clauses[j].text) < said_at for j in asked) \
-                and re.search(re.escape(clauses[i - 1].text.strip()) + r"\W+" + re.escape(clause.text.strip()), text):
+                and _joined(clauses[i - 1], clause, text, r"\W+"):
             moved = clauses[i - 1]
             return [*clauses[:asked[0]], moved, *[c for k, c in enumerate(clauses) if k >= asked[0] and k != i - 1]]
     return clauses
@@ -161,7 +162,6 @@ def _described(text: str) -> bool:
     the robot goes, told, not asked. A bare place ("Bedroom, please.") is still asked."""
     said = words(text)
     return bool(said) and said[0] in _WAYS and "you" not in said and "please" not in said
-
 
 
 def tag_asks(before: Clause, tag: str) -> bool:
