@@ -48,8 +48,10 @@ def test_places_in_a_then_list_sent_off_with_a_bare_go_are_its_steps() -> None:
         "bathroom", "bedroom", "back on your dock")  # the heading stays talk
     assert read_request("Bathroom first, then back to your charger. Go now.").steps == (
         "Bathroom first", "back to your charger")  # the "go" is no step of its own
-    # no "go", or a "go on" that may only say "carry on": talk stays talk
-    assert not read_request("Kitchen, then bedroom.").asks_action
+    # no "go", or a "go on" that may only say "carry on": talk stays talk; a route of bare places
+    # and nothing else is asked (text test v63: "front door, after that the kitchen"), not as a question
+    assert read_request("Kitchen, then bedroom.").steps == ("Kitchen", "bedroom")
+    assert not read_request("My glasses... kitchen, then the bedroom?").asks_action
     assert not read_request("Ben rang, then Clara.").asks_action
     assert read_request("Ben phoned, then Clara. Off you go.").steps == ("Off you go",)  # news, a name: no place
     assert read_request("I went to the kitchen, then the bedroom. Go on.").steps == ("Go on",)

@@ -389,3 +389,14 @@ def test_bye_is_not_by_and_off_the_phone_ends_the_call() -> None:
     assert refusal(wait, SPECS["end_video_call"], {}, (), VOICE, tools=tools) is not None
     off = read_request("Get off that phone, then come into the kitchen.")
     assert refusal(off, SPECS["end_video_call"], {}, (), VOICE, tools=tools) is None
+
+
+def test_kind_enough_to_is_courtesy_not_the_stops_enough() -> None:
+    """Read again for text test v63: "Would you be good enough to call Ben?" let the robot's stop,
+    the cancel and the end of a call through ("enough" is a word of each). Only the call fits."""
+    said, tools = read_request("Would you be good enough to call Ben?"), list(SPECS.values())
+    assert refusal(said, SPECS["start_video_call"], {"contact": "Ben"}, (), VOICE, tools=tools) is None
+    for name in ("stop_robot", "cancel_navigation", "end_video_call"):
+        body = refusal(said, SPECS[name], {}, (), VOICE, tools=tools)
+        assert body is not None and body["details"]["reason"] == OTHER, name
+    assert refusal(read_request("That's enough, stop."), SPECS["stop_robot"], {}, (), VOICE) is None

@@ -1139,3 +1139,62 @@ def test_once_youve_hung_up_is_the_end_of_the_call_first() -> None:
     the call ("hung" had no base form)."""
     assert read_request("Once you've hung up with Ben, head into the kitchen.").steps == (
         "hang up with Ben", "head into the kitchen")
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Pop over to the hallway, but not right now, love.", ()),  # a time that is not now, after it
+    ("Ring Clara for me. Not at the moment though, she's at the shops.", ()),
+    ("Later on, after lunch perhaps, I'd like you to go to the bedroom.", ()),  # a hedged time carries on
+    ("Perhaps, go to the kitchen.", ("go to the kitchen",)),  # a hedge alone puts nothing off
+    ("Stop, not now!", ("Stop",)),  # a spoken stop stays a stop
+    ("Kitchen, real quick, the kettle's whistling.", ("Kitchen",)),  # haste after a bare place
+    ("I'd very much like to speak to Ben, if you'd be good enough to ring him.",
+     ("I'd very much like to speak to Ben",)),
+    ("Turn the projector off, then I wonder if you'd be good enough to pop into the kitchen.",
+     ("Turn the projector off", "I wonder if you'd be good enough to pop into the kitchen")),  # no "please"
+    ("Give Ben a ring, and when that's done, put the projector on.", ("Give Ben a ring", "put the projector on")),
+    ("When you're done, call Ben.", ()),  # said first: something under way, a condition
+    ("Bedroom, after that the bathroom.", ("Bedroom", "the bathroom")),  # a route of bare places
+    ("Hallway, then the kitchen, and then off to your charger with you.",
+     ("Hallway", "the kitchen", "off to your charger with you")),
+    ("Hang up on Ben, then it's straight back to your charger for you.",
+     ("Hang up on Ben", "it's straight back to your charger for you")),
+    ("Put the projector off, then it's back to bed for me.", ("Put the projector off",)),  # the speaker's
+    ("Belay that order. Drop the trip, we're staying put.", ()),  # a call-off: the cancel's, if driving
+    ("Scrub that errand and douse the projector, please.", ("douse the projector",)),
+])
+def test_times_not_now_after_a_request_routes_of_bare_places_and_call_offs(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v63: "…, but not at the moment, thank you" drove; "bathroom, real quick, …",
+    "front door, after that the kitchen", "Bathroom, then the bedroom, and then home to the dock
+    with you", "I'd very much like to speak to … Ben, if you'd be good enough to …", "…, and when
+    that's done, make your way along to the bedroom?", "…, then it's back to your berth for a
+    charge", "Belay that. Abandon the trip" and "Scrub that run, and douse the projector" lost steps."""
+    assert read_request(text).steps == steps
+
+
+def test_a_call_off_in_a_sailors_words_lets_the_cancel_run_and_kind_enough_does_not() -> None:
+    from robovoice.assistant.gate import halts
+    assert halts(read_request("Belay that. Abandon the trip, we're not going anywhere."))
+    assert halts(read_request("Drop the trip, we're staying put."))
+    assert not halts(read_request("Drop the call."))
+    assert not halts(read_request("Scrub the floor for me."))
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Give Clara a ring. Hang on. Hallway first, the signal's better there.", ("Hallway first", "Give Clara a ring")),
+    ("Switch the projector off, then bedroom first.", ("bedroom first", "Switch the projector off")),
+    ("Kitchen first, then ring Ben.", ("Kitchen first", "ring Ben")),  # first already
+    ("Right, enough for now. Switch the projector off.", ("Switch the projector off",)),  # no step of its own
+    ("Turn the projector on, and once it's up and going ring Anna.", ("Turn the projector on", "ring Anna")),
+    ("Bathroom, and then give Ben a bell.", ("Bathroom", "give Ben a bell")),
+])
+def test_a_place_put_first_after_a_pause_enough_for_now_and_once_its_up(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v64: "Turn the projector on. Wait. Living room first, …" did the projector first;
+    "Okay, enough now. End the call and …" made "enough now" the first step (the model said it
+    back and did nothing); "…, and once it's up give Clara a ring …" lost the call."""
+    assert read_request(text).steps == steps
+
+
+def test_enough_alone_still_halts_a_drive() -> None:
+    from robovoice.assistant.gate import halts
+    assert halts(read_request("Enough now!"))

@@ -423,6 +423,20 @@ async def test_a_claim_with_no_call_at_all_is_asked_for_once_more() -> None:
     assert not result.calls and len(server.requests) == 2  # once only
 
 
+async def test_a_turn_ended_with_nothing_to_say_is_asked_for_once_more() -> None:
+    """Text test v63: the model read "Kitchen first, and once you're there, switch on the
+    projector." back (never spoken) and called nothing. Nothing said and nothing called on a
+    request that names a place asks for the first thing once more; on chat it stays an answer."""
+    said = "Kitchen first, and once you're there, switch on the projector."
+    result, server = await scripted_turn(
+        [TextReply(said), call("navigate_to", target="kitchen"), call("set_projector_power", on=True),
+         TextReply("The projector is on.")], said)
+    assert [c.name for c in result.calls] == ["navigate_to", "set_projector_power"]
+    assert server.requests[1].tool_names == ["navigate_to"]
+    result, server = await scripted_turn([TextReply("")], "I had a lovely walk this morning.")
+    assert not result.calls and len(server.requests) == 1
+
+
 async def test_after_a_refused_call_in_a_compound_request_the_step_is_offered_what_fits_it() -> None:
     """Dev `wrapup-1` ("Right, wind up the call with Anna and then pop the projector on."): the
     model called Anna, refused as not fitting; offered every tool that fits the request, it did

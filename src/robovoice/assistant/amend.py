@@ -135,6 +135,15 @@ _GO_ALONE = re.compile(r"^(?:go|go now|let'?s go|away you go|on you go|get going
                        re.IGNORECASE)
 
 
+_AFTER_THAT = re.compile(r"\b(?:after that|afterwards)\b", re.IGNORECASE)
+
+
+def _then_before(clause: Clause, text: str) -> bool:
+    """`clause` is said right after a "then" or an "after that" (a comma or "and" between)."""
+    return re.search(r"\b(?:then|after that|afterwards),?\s+" + re.escape(clause.text.strip()), text,
+                     re.IGNORECASE) is not None
+
+
 def go_list(clauses: list[Clause], text: str) -> list[Clause]:
     """`clauses` with the bare places of a "then" list made requests when a "go" without a
     place of its own sends the robot off ("Bathroom, then bedroom. Go."; the "go" is then no
@@ -142,7 +151,7 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
     now."), or when the list ends or starts with a bare place that reads as a request already
     ("Bathroom, then bedroom, then back to dock."). A heading before a colon ("Evening round:
     …") stays talk, and so do a name inside a sentence and news ("Ben phoned, then Clara")."""
-    if "then" not in words(text):
+    if "then" not in words(text) and not _AFTER_THAT.search(text):
         return clauses
     go = [i for i, c in enumerate(clauses)
           if c.kind is ClauseKind.REQUEST and _GO_ALONE.match(FILLER.sub("", c.text.strip()).strip(" .!"))]
@@ -160,11 +169,23 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
                          or (i in others and fragment(c.text) and words(c.text)[0] not in IMPERATIVES)}
         # "Bedroom. Then call Ben.": a bare place said first, right before "then" and a request, is a step too
         # (text test v52)
+        # ("Bathroom, then the bedroom, and then home to the dock with you": the places before it too, text v63)
         first = next((i for i, c in enumerate(clauses) if FILLER.sub("", c.text).strip()), None)
-        if first in places and first + 1 in others and words(clauses[first].text)[0] not in IMPERATIVES \
-                and not _GREETING.match(clauses[first].text.strip()) \
-                and re.search(r"\bthen,?\s+" + re.escape(clauses[first + 1].text.strip()), text, re.IGNORECASE):
-            steps.add(first)
+        run = first
+        while run is not None and run + 1 in places and _then_before(clauses[run + 1], text):
+            run += 1
+        if first in places and run is not None and run + 1 in others \
+                and words(clauses[first].text)[0] not in IMPERATIVES \
+                and not _GREETING.match(clauses[first].text.strip()) and _then_before(clauses[run + 1], text):
+            steps |= set(range(first, run + 1))
+        # "front door, after that the kitchen": nothing but places, one after the other (text test v63)
+        said = [i for i, c in enumerate(clauses) if FILLER.sub("", c.text).strip()]
+        # (not a question: "kitchen, then the bedroom?", where the glasses may be)
+        if len(said) > 1 and set(said) <= places and said == list(range(said[0], said[-1] + 1)) \
+                and not text.rstrip().endswith("?") \
+                and not any(_GREETING.match(clauses[i].text.strip()) for i in said) \
+                and all(_then_before(clauses[i], text) for i in said[1:]):
+            steps |= set(said)
         while grown := {i for i in places - steps if i - 1 in steps or i + 1 in steps}:
             steps |= grown
     return [Clause(c.text, ClauseKind.REQUEST) if i in steps else

@@ -51,7 +51,8 @@ _POLITE = re.compile(
     # you'd better ring Clara"; not "you should have seen it", "you must be tired")
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
     r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
-    r"^i(?:'d| would| should) like (?:you|to|the|my|a|an|some|it)\b|^i(?:'d| would) love\b|"
+    r"^i(?:'d| would| should) (?:(?:very much|really|so much) )?like (?:you|to|the|my|a|an|some|it)\b"
+    r"|^i(?:'d| would) (?:really )?love\b|"  # "I'd very much like to speak to my nephew Ben" (text test v63)
     # (not what someone else is to do: "I want Anna to see the garden", text test v34)
     r"^i (?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b|to\b)\w+) to \w)|"
     r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
@@ -65,7 +66,7 @@ _POLITE = re.compile(
     r"^(?:i |do you )?reckon you (?:could|can|might)\b|^whether you (?:could|might|would|can)\b|"
     r"^i(?:'d| would| should) (?:be (?:\w+ ){0,2}(?:grateful|obliged|thankful|glad)|appreciate it) if you\b|"
     # the most formal: "might you …", "may I ask you to …", "would it be too much trouble to …"
-    r"^(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b|"
+    r"^(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough (?:as )?|as )to\b|"
     # a request passed on for somebody in the room: "Harold wants you to put the projector on",
     # "she wants you in the bedroom" (text test v44, audio test v35)
     r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|your|our) \w+) (?:wants|needs|would like|'d like) you "
@@ -79,6 +80,8 @@ _POLITE = re.compile(
     r"(?:the|my|your) \w+(?: \w+)? (?:first|next|now|please)$|"
     # "I think it's time we put a call through to Dr. Weber" (text test v52); not "it's time for lunch"
     r"^(?:(?:so|well|and) )?(?:(?:i think|i reckon|i'd say) )?it'?s (?:about |high )?time (?:we|you) (?!were\b)\w+|"
+    # "…, then it's back to your berth for a charge" (text test v63); not "it's back to bed for me"
+    r"^it'?s (?:straight )?(?:back|off|home) (?:to|into|onto|on to) (?:your\b|(?:the|your) [\w ]+ (?:for|with) you\b)|"
     r"^might you\b|^(?:is there )?any chance (?:you(?:'d| could| would| can| might| will)?|of you)\b|"
     r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
     r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
@@ -95,8 +98,9 @@ _POLITE = re.compile(
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
 _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$"
-                       r"|^(?:scrap|scratch|ignore|disregard) (?:it|that|this)"
-                       r"(?: (?:route|trip|drive|journey|plan|idea|order|one))?$"
+                       r"|^(?:scrap|scratch|ignore|disregard|belay|scrub|abandon|abort|drop) (?:it|that|this|the)"
+                       # "Belay that.", "Abandon the trip", "Scrub that run" (text test v63)
+                       r"(?: (?:route|trip|drive|journey|plan|idea|order|one|run|errand|outing))?$"
                        # "forget I said that", "forget what I asked" (text test v54: the drive went ahead)
                        r"|\bforget (?:(?:that )?i (?:said|asked)|what i (?:said|asked))\b",
                        re.IGNORECASE)
@@ -203,6 +207,8 @@ def classify(clause: str) -> ClauseKind:
             return ClauseKind.STATEMENT  # "What... what time... it's so dark": a word searched for, no question
         return ClauseKind.QUESTION
     if len(said) <= 3 and (said[-1] in ("on", "off", "please", "now") or HASTE.match(said[-1])) \
-            and first.split("'")[0] not in _SUBJECTS:
-        return ClauseKind.REQUEST  # a terse command: "projector on", "kitchen, please"
+            and first.split("'")[0] not in _SUBJECTS and first != "enough":
+        # a terse command: "projector on", "kitchen, please" (not "enough now": the stop's and the
+        # cancel's, when the robot moves, `gate.halts`; before a request, no step: text test v64)
+        return ClauseKind.REQUEST
     return ClauseKind.STATEMENT

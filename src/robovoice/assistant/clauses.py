@@ -10,7 +10,8 @@ from robovoice.assistant.lexicon import IMPERATIVES, RELATIONS
 
 # Sentence ends, commas/semicolons, and the conjunctions that join requests.
 _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
-    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*|,\s*"
+    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*"
+    r"|,\s*(?:and then\s+|and after that\s+)?"  # ", and then home to the dock": no clause "and" (text test v63)
     r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+"
     r"|\s+[-\u2013\u2014]+\s+"  # "go to the bedroom - sorry, no, the living room"
     r"|:\s+"  # "three things: go into the lounge, …" (not a time: "half 3:30")
@@ -25,11 +26,12 @@ _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|th
 # "…, and once that's done take yourself off for a charge": the step before, done, then this one
 _DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:(?:that|this|it)(?:'s| is| has)(?: been)? "
                         # "… switch on the projector, and once it's warmed up call Anna" (text test v55)
-                        r"(?:done|finished|over|sorted|warmed up|ready|on|running)"
+                        r"(?:done|finished|over|sorted|warmed up|ready|on|running|up|going)"
                         # "…, and when you're done with that get yourself back on the charger" (text test v58)
                         r"|you(?:'re| are|'ve| have)? (?:all )?(?:done|finished)"
                         r"(?: with (?:that|this|it|them|her|him)| there| here| in there)?)"
-                        r"\s+(?!(?:with|that|this|it|them|there|here|in)\b)", re.IGNORECASE)
+                        # (said alone before a comma: "…, and when that's done, make your way …", text test v63)
+                        r"(?:\s+(?!(?:with|that|this|it|them|there|here|in)\b)|$)", re.IGNORECASE)
 # "Mrs Pritchard asked me to get you to call Clara": a request passed on through the speaker, the
 # robot's to do now (text test v58); its words are the request's own
 _RELAYED = re.compile(r"^(?:(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|when|once)\b)(?:\w+\.? )?\w+ "
@@ -85,10 +87,22 @@ _ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+
                              re.IGNORECASE)
 
 
+# "once it's up and running, ring Anna": one state, no "and" between two clauses (text test v64)
+_UP_AND = re.compile(r"\bup and (?:running|going)\b", re.IGNORECASE)
+
+
 def split_clauses(text: str) -> list[str]:
+    text = _UP_AND.sub("up", text)
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
     text = _AND_WAIT.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", _AWAY_AND.sub("go and ", text))))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
-    parts = [p for p in (_RELAYED.sub("", _DONE_THEN.sub("", _LEADING.sub("", p.strip(" ,.;:!?-\"'"))))
-                         for p in _SPLIT.split(text)) if p]
+    parts = [p for i, p in enumerate(_RELAYED.sub("", _done_then(_LEADING.sub("", p.strip(" ,.;:!?-\"'")), i))
+                                     for i, p in enumerate(_SPLIT.split(text))) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]
+
+
+def _done_then(part: str, at: int) -> str:
+    """`part` without its "once that's done": said first and alone, it is about something under
+    way, a condition (`intent.read_request`), and stays."""
+    rest = _DONE_THEN.sub("", part)
+    return part if at == 0 and not rest else rest

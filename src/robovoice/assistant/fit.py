@@ -98,8 +98,9 @@ def names(sentence: str, name: str, arguments: Mapping[str, Any]) -> bool:
 
 
 # The courtesy a request may open with, before its verb: "could you please hang up the call"
-_COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|you|go ahead and)\b[\s,]*)+",
-                       re.IGNORECASE)
+_COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|you|go ahead and)\b[\s,]*)+"
+                       # "… be kind enough to call Ben": no "enough" of the stop's words
+                       r"|\bbe (?:so |ever so )?(?:kind|good) (?:enough )?(?:as )?(?=to\b)", re.IGNORECASE)
 
 
 def _request_stems(intent: Intent, said: Collection[str],

@@ -139,7 +139,9 @@ _HALTING = re.compile(r"\b(?:stop\w*|halt|hold(?! off)|stay|wait|hang on|freeze|
                       r"|chang\w* (?:my|your) mind"
                       r"|don'?t (?:bother|go|move|drive)|enough|cancel\w*|call it off|after all|leave it|no further"
                       r"|turn (?:back|round|around)|quit(?:s|ting)?|abort\w*|call (?:(?:the|that|this) \w+ )?off"
-                      r"|whoa|scrap (?:it|that|this)|scratch that)\b",  # "scrap that route" (text test v54)
+                      r"|whoa|scrap (?:it|that|this)|scratch that"  # "scrap that route" (text test v54)
+                      r"|belay that|scrub (?:it|that|this)|abandon (?:it|that|this|the)"  # (text test v63)
+                      r"|drop (?:that|this|the) (?:trip|drive|journey|run|errand|route))\b",
                       re.IGNORECASE)
 
 

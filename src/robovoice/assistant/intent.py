@@ -204,6 +204,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 or (previous is not None and previous.kind is ClauseKind.REQUEST)))
                 or (corrected and fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
+            thing = set(words(re.sub(r"\bfirst\W*$", "", bare))) - ARTICLES  # not a thing said before, again
+            if ordered and front is None and re.search(r"\bfirst\W*$", part) and _first_asked(clauses) is not None \
+                    and not any(thing <= set(words(c.text)) for c in clauses):
+                front = _first_asked(clauses)  # "Turn the projector on. Wait. Living room first." (text test v64)
+                if previous is not None and at is not None and _PAUSE.match(previous.text.strip()):
+                    clauses[at] = Clause(previous.text, ClauseKind.STATEMENT)  # the "wait": a pause, no stop
         if kind is ClauseKind.STATEMENT and previous is not None and previous.kind is ClauseKind.REQUEST \
                 and _MIND_DOING.search(previous.text) and _doing(bare):
             kind = ClauseKind.REQUEST  # "would you mind turning the projector on and then calling Dr. Weber?"
@@ -261,9 +267,10 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             front = None
             continue
         clauses.append(Clause(part, kind))
-    if len(clauses) > 1 and clauses[-1].kind is ClauseKind.NEGATED and _NOT_BEFORE.match(clauses[-1].text.strip()) \
-            and clauses[-2].kind is ClauseKind.REQUEST:  # "…, you can go to the bathroom, but not before"
-        clauses[-2] = Clause(clauses[-2].text, ClauseKind.NEGATED)
+    for i in range(1, len(clauses)):  # "…, you can go to the bathroom, but not before"; "ring Clara. Not at the moment"
+        if clauses[i].kind is ClauseKind.NEGATED and _NOT_BEFORE.match(clauses[i].text.strip()) \
+                and clauses[i - 1].kind is ClauseKind.REQUEST and not STOP.search(clauses[i - 1].text):
+            clauses[i - 1] = Clause(clauses[i - 1].text, ClauseKind.NEGATED)
     if condition and conditioned is not None:  # a condition after the request, nothing after it to apply to:
         clauses[conditioned] = Clause(clauses[conditioned].text, ClauseKind.ABILITY)  # "…, if I had a fall?"
     if any(JUST_ASKING.search(c.text) for c in clauses):  # "Out of interest, can you …?"
@@ -318,7 +325,10 @@ _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that doe
 
 
 # a time said before, held to (audio test v42: "after his lunch you can …, but not before")
-_NOT_BEFORE = re.compile(r"^(?:but )?(?:not (?:before|until then|till then|yet)|no sooner)[\s.!]*$", re.IGNORECASE)
+# and a time that is not now, said after the request (text test v63: "…, but not at the moment, thank you")
+_NOT_BEFORE = re.compile(r"^(?:but |though )?(?:not (?:before|until then|till then|(?:just )?yet|(?:just |right )?now"
+                         r"|at the moment|at present|this minute|today|tonight)|no sooner)"
+                         r"(?:,? (?:though|thanks|thank you|please|mind))*[\s.!]*$", re.IGNORECASE)
 _ACTUALLY = re.compile(r"^\s*actually\b[\s,]*", re.IGNORECASE)
 _ONLY_THIS = re.compile(r"^(?:just|only)\s+(?!(?:a|one) (?:sec|second|minute|moment|mo)\b)", re.IGNORECASE)
 

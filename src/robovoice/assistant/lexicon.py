@@ -27,6 +27,7 @@ FILLER = re.compile(
 # haste said after a request: "Hallway, and quick about it." (a tag; after a bare place it asks for it)
 _HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?(?:sharpish|smartish)|chop chop|pronto|"
           r"quick smart|"  # (text test v55)
+          r"(?:real|really|super) quick(?: like)?|asap|right away|straight away|at once|"  # (text test v63)
           r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
           # … and how to go: "bathroom, please, quietly" (audio test v33)
           r"(?:please,? )?(?:and )?(?:nice and )?(?:quiet(?:ly)?|slow(?:ly)?|careful(?:ly)?|gently|soft(?:ly)?|quickly)"
@@ -62,6 +63,7 @@ IMPERATIVES = frozenset({
     "steer",  # "steer for the bathroom" (text test v48)
     "ping", "drop",  # a gadget's words: "ping Ben on video", "drop the call" (text test v54)
     "disconnect",  # "please disconnect this call now" (audio test v40)
+    "douse",  # "douse the projector" (text test v63)
 })
 # The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
 # "hold still" said to the robot, not of it ("do you have to stay still?", "the kids won't keep still")
@@ -142,7 +144,7 @@ NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|ther
                         r"(?!(?:sw|br|r|s|fl|sl|st|wr|str)ing$)\w+(?:ed|ing|[^s]s))$")
 
 # A bare "no", "don't", "don't bother", "scratch that" after a request takes it back.
-WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|"
+WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|belay that|"
                         r"forget (?:it|that|(?:that )?i (?:said|asked)(?: that| it)?|what i (?:said|asked))|"
                         r"never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
                         r"leave (?:it|that))"
@@ -150,7 +152,8 @@ WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do n
                         re.IGNORECASE)
 # "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
 # unless it asks the robot for a call or to find something out ("…, I'd like to talk to Anna")
-OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:(?:really|only|just) )?(?:want|need|wish|like|have|got) to (\w+)",
+OWN_PLAN = re.compile(r"^i(?:'d|'ve| would)? (?:(?:really|only|just|very much) )?"
+                      r"(?:want|need|wish|like|have|got) to (\w+)",
                       re.IGNORECASE)
 # Taking back one thing by its name: "not Ben", "skip the kitchen", "leave Clara", "forget about the call".
 NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|cancel)\s+((?:\w+\s*){1,3})$",
@@ -159,7 +162,8 @@ NOT_THAT = re.compile(r"^(?:not|skip|leave|forget(?: about)?|drop|scratch|scrap|
 # charger": what follows in the same breath is postponed too.
 LATER_ONLY = re.compile(r"^(?:(?:later(?: on)?|tomorrow(?: morning| afternoon| evening)?|tonight|this (?:evening|"
                         r"afternoon)|after (?:lunch|dinner|breakfast|tea)|in an? (?:bit|while|hour|minute|moment)|"
-                        r"some other time|another time)\b[\s,]*)+$", re.IGNORECASE)
+                        r"some other time|another time)\b(?:[\s,]+(?:perhaps|maybe|i think|or so))?[\s,]*)+$",
+                        re.IGNORECASE)  # "Later on, after lunch perhaps, …" (text test v63)
 # An exclamation said as a question, not a request: "…, can you believe it!", "would you believe it?"
 RHETORICAL = re.compile(r"^(?:can|could|would|will) (?:you|ye) (?:ever )?(?:believe|imagine|credit)\b"
                         r"(?: (?:it|that|this|them|him|her|the (?:cheek|nerve)(?: of (?:it|him|her|them))?))?\W*$",
@@ -290,7 +294,9 @@ _HESITATION = re.compile(
     r"|\b(" + _DETERMINER + r")\s*(?:\.{2,}|…)\s*\2\b", re.IGNORECASE)  # "put the... the picture thing on"
 
 
-_SO_KIND_AS_TO = re.compile(r"\bif you(?:'d| would) be (?:so |ever so )?(?:kind|good) (?:enough )?as to\b",
+# ("if you'd be good enough to put a video call through to him", text test v63)
+_SO_KIND_AS_TO = re.compile(r"(?<!\bwonder )(?<!\bwondering )(?<!\bwondered )"  # "I wonder if you'd …": a request
+                            r"\bif you(?:'d| would) be (?:so |ever so )?(?:kind|good) (?:enough (?:as )?|as )to\b",
                             re.IGNORECASE)
 # Who wants the robot there, after "… is where": "I need you", "you should be" (`clause_kind`)
 WANTED_THERE = (r"(?:(?:i|we)(?:'d| would)? (?:really )?(?:want|need|like) you\b"

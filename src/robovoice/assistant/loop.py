@@ -223,9 +223,9 @@ class Assistant:
                 if asked_left(asked, stepped, passed):
                     messages.append(next_step())
                     continue
-            if not requested and not (calls or nudged) and text and step < max_steps - 2 and (
+            if not requested and not (calls or nudged) and step < max_steps - 2 and (
                     left := turn_rules.claimed_unacted(asked, lookups, tools, text)) is not None:
-                nudged, only = True, left[1]  # "I am now at the kitchen." with no call: asked once more
+                nudged, only = True, left[1]  # "I am now at the kitchen." (or nothing) with no call: asked once more
                 messages.append(ChatMessage("user", step_hint(left[0], False, first=False)))
                 continue
             if not requested:

@@ -88,9 +88,12 @@ def claimed_unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequen
     """The model called nothing and answered in words that claim an action ("I am now at the
     kitchen." for "Three jobs. Kitchen first, then ring Ben."): the first thing asked that names
     a value an action lists, and those actions, as `unacted` gives them; it is asked for once
-    more, offered only those, and the check before acting still decides. None when the words
-    claim nothing: a refusal in words is the model's own second check, and is kept."""
-    return _first_naming(asked, lookups, specs) if claimed_action_in(text) is not None else None
+    more, offered only those, and the check before acting still decides. So is a turn the model
+    ended with nothing to say ("Kitchen first, and once you're there, switch on the projector."
+    read back, which is never spoken: text test v63). None when the words claim nothing: a
+    refusal in words is the model's own second check, and is kept."""
+    said_nothing = not text.strip()
+    return _first_naming(asked, lookups, specs) if said_nothing or claimed_action_in(text) is not None else None
 
 
 def naming(step: str, specs: Sequence[ToolSpec]) -> list[str]:
