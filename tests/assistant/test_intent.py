@@ -1198,3 +1198,10 @@ def test_a_place_put_first_after_a_pause_enough_for_now_and_once_its_up(text: st
 def test_enough_alone_still_halts_a_drive() -> None:
     from robovoice.assistant.gate import halts
     assert halts(read_request("Enough now!"))
+
+
+def test_names_in_a_row_with_no_verb_are_a_list_not_calls() -> None:
+    """Audio test v55: "go to the living room and then call Anna" was heard "… and Ben, Clara, Anna."
+    and Ben was called. Names in a row with only commas between them are no steps."""
+    assert read_request("go to the living room and Ben, Clara, Anna.").steps == ("go to the living room",)
+    assert read_request("Call Ben, then Clara.").steps == ("Call Ben", "Clara")

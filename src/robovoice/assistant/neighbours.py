@@ -77,7 +77,25 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    return _before_that_last(_done_too(_own_and(_not_that_but(out), text), text), text)
+    return _before_that_last(_done_too(_own_and(_not_that_but(_name_list(out, text)), text), text), text)
+
+
+_BARE_NAME = re.compile(r"^(?:and )?[A-Z][a-z]+$")
+
+
+def _name_list(clauses: list[Clause], text: str) -> list[Clause]:
+    """"go to the living room and Ben, Clara, Anna.": names in a row with only commas between them
+    and no verb are a list, no steps (audio test v55: "and then call Anna" heard so, and Ben was
+    called). One call at a time is all the robot makes, so which one was meant is not known."""
+    out = list(clauses)
+    for i in range(1, len(out)):
+        before, clause = clauses[i - 1], clauses[i]
+        if before.kind is clause.kind is ClauseKind.REQUEST and _BARE_NAME.match(before.text.strip()) \
+                and _BARE_NAME.match(clause.text.strip()) and before.text.strip() != clause.text.strip() \
+                and _joined(before, clause, text, r"\s*,\s*(?:and\s+)?"):
+            out[i - 1] = Clause(before.text, ClauseKind.STATEMENT)
+            out[i] = Clause(clause.text, ClauseKind.STATEMENT)
+    return out
 
 
 def _not_that_but(clauses: list[Clause]) -> list[Clause]:
