@@ -58,6 +58,8 @@ def test_clock_rejects_a_bad_speed() -> None:
         ("the loo", "bathroom"),
         ("toilet", "bathroom"),
         ("balcony", "balcony"),
+        ("home", "charging dock"),  # the robot's home is its dock (text test v63: "home to the dock with you")
+        ("base", "charging dock"),
     ],
 )
 def test_place_names_are_normalised(text: str, expected: str) -> None:

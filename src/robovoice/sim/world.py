@@ -82,6 +82,8 @@ _ALIASES: dict[str, str] = {
     "charger": DOCK,
     "charging station": DOCK,
     "docking station": DOCK,
+    "home": DOCK,  # "home to the dock with you", "go home": the robot's home is its dock (text test v63)
+    "base": DOCK,
     "lounge": "living room",
     "sitting room": "living room",
     "front room": "living room",
