@@ -68,6 +68,8 @@ class Intent:
                 worded.append(_put_right(righted.text, value))
             elif _HERE.search(c.text) and (where := _where_they_are(self.clauses[:i])) is not None:
                 worded.append(f"come to {where}")
+            elif _LAST_FIRST.search(value) and fragment(_LAST_FIRST.sub("", value)):
+                worded.append(_LAST_FIRST.sub("", value))  # "Living room first": the order is the hint's
             else:
                 worded.append(c.text)
         return tuple(worded)
@@ -131,6 +133,7 @@ _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|t
                         re.IGNORECASE)
 # a bare "no" or "sorry" between a request and what puts it right; a request its own words
 # declined ("don't go to the kitchen") is no request a place after it puts right
+_LAST_FIRST = re.compile(r",?\s+first\W*$", re.IGNORECASE)
 _TAKING_BACK = re.compile(r"^(?:no|nope|no wait|wait|sorry|correction|or rather|rather|i mean[t]?)?[\s,.!]*$",
                           re.IGNORECASE)
 _SAID_NOT = re.compile(r"^(?:don'?t|do not|never|not|no need)\b", re.IGNORECASE)
