@@ -400,3 +400,18 @@ def test_kind_enough_to_is_courtesy_not_the_stops_enough() -> None:
         body = refusal(said, SPECS[name], {}, (), VOICE, tools=tools)
         assert body is not None and body["details"]["reason"] == OTHER, name
     assert refusal(read_request("That's enough, stop."), SPECS["stop_robot"], {}, (), VOICE) is None
+
+
+def test_a_bare_off_after_the_thing_is_named_fits_and_turn_it_off_is_no_stop() -> None:
+    """Text test v65: "That projector has been humming … Off, please." did not fit the projector;
+    "That's enough of that, turn it off. The call, I mean." ran the robot's stop ("enough", in a
+    sentence "it" looked back to). The stop and the cancel fit only by a request's own words."""
+    tools = list(SPECS.values())
+    said = read_request("That projector has been humming all afternoon. Off, please.")
+    assert refusal(said, SPECS["set_projector_power"], {"on": False}, (), VOICE, tools=tools) is None
+    said = read_request("That's enough of that, turn it off. The call, I mean.")
+    assert refusal(said, SPECS["end_video_call"], {}, (), VOICE, tools=tools) is None
+    for name in ("stop_robot", "cancel_navigation"):
+        body = refusal(said, SPECS[name], {}, (), VOICE, tools=tools)
+        assert body is not None, name
+    assert refusal(read_request("Enough! Stop it!"), SPECS["stop_robot"], {}, (), VOICE, tools=tools) is None

@@ -1205,3 +1205,21 @@ def test_names_in_a_row_with_no_verb_are_a_list_not_calls() -> None:
     and Ben was called. Names in a row with only commas between them are no steps."""
     assert read_request("go to the living room and Ben, Clara, Anna.").steps == ("go to the living room",)
     assert read_request("Call Ben, then Clara.").steps == ("Call Ben", "Clara")
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Abeg call Ben, I dey for kitchen.", ("Abeg call Ben",)),  # Pidgin "please"
+    ("Ring Clara. No, I beg your pardon, I mean Anna.", ("I mean Anna",)),
+    ("Off the projector and go to the bedroom.", ("Off the projector", "go to the bedroom")),
+    ("Go living room, then on the projector for the children.", ("Go living room", "on the projector for the children")),
+    ("I'd like to know if you're able to go and charge without being reminded.", ()),  # what it can do
+    ("I'd like to know where you are.", ("I'd like to know where you are",)),  # a look-up asked for
+])
+def test_pidgin_courtesy_a_formal_pardon_on_and_off_as_verbs_and_wanting_to_know(
+        text: str, steps: tuple[str, ...]) -> None:
+    """Text test v65: "Abeg ring Anna …", "No, I beg your pardon, I mean the bathroom", "…, on the
+    projector so …" and "Off the projector, then go charge" lost their steps; "I should like to
+    know whether you are capable of taking yourself off to be charged …" drove to the dock."""
+    assert read_request(text).steps == steps
+    if "pardon" in text:
+        assert read_request(text).worded_steps == ("Ring Anna",)

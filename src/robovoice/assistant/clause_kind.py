@@ -132,6 +132,11 @@ _YOU_NOW = re.compile(rf"^you (?:{ROBOT_ACTIONS}|move|roll|finish|stop|make|take
                       r"(?! (?:me|us|him|her|them|like|so|too|very|really|fast|slow|well|badly|mad|crazy)\b)"
                       r"(?!.*\b(?:always|never|usually|often|sometimes|every|each|normally|ever|still|whenever|"
                       r"all the time|yesterday|last)\b)", re.IGNORECASE)
+# "I should like to know whether you are capable of taking yourself off …" asks what it can do (text test v65)
+_KNOW_IF_ABLE = re.compile(r"^i(?:'d| would| should)? (?:like|love|want|wish) to know (?:whether|if) (?:you|it)"
+                           r"(?:'re| are| would be| might be| will be)? (?:capable|able)\b"
+                           r"|^i(?:'d| would| should)? (?:like|love|want|wish) to know (?:whether|if) (?:you|it) "
+                           r"(?:can|could|know how to)\b", re.IGNORECASE)
 # "kindly be going to the kitchen" (text test v49)
 _BE_GOING = re.compile(r"^be (?:going|coming|heading|moving|off) (?:to|into|in|through|over|back)\b", re.IGNORECASE)
 # a thing to be switched, said as what may happen to it: "the projector can go off now" (text v50)
@@ -145,7 +150,11 @@ _TO_PLACE = re.compile(r"^(?=.*\b(?:first|next|then|now|please|last|again|from t
 # a helm order: "set a course for the kitchen", "shape a course for the living room" (audio test v39)
 _COURSE = re.compile(r"^(?:set|shape|plot|lay|steer) (?:a |your |our )?course (?:for|to)\b", re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
-_ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+", re.IGNORECASE)
+# … and "on" and "off" as verbs, as Nigerian English says them: "off the projector", "on the projector
+# so she can see" (text test v65); not a place ("on the table", "off the kitchen": no thing switched)
+_ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+"
+                          r"|^(?:on|off) (?:the|that|your|this|my) (?:projector|telly|tv|television|screen|lamp|light)s?"
+                          r"(?: (?:so|then|and|please|now|for)\b|$)", re.IGNORECASE)
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
 _WHERE_WANTED = re.compile(r"(?:'s| is) where " + WANTED_THERE, re.IGNORECASE)
 _SUBJECTS = frozenset({"i", "we", "he", "she", "they", "it", "that", "this", "there", "you"})  # "I'm off now"
@@ -183,7 +192,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.NEGATED
     if _CHALLENGE.match(lowered):
         return ClauseKind.REQUEST  # "let's see if you can find your own way back" is to be done (text test v47)
-    if asks_ability(text):
+    if asks_ability(text) or _KNOW_IF_ABLE.match(lowered):
         return ClauseKind.ABILITY
     if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)) or _YOU_NOW.match(lowered) \
             or _BE_GOING.match(lowered):

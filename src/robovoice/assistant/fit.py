@@ -33,8 +33,14 @@ _POINTS_ON = frozenset({"thing", "things", "stuff", "one", "on", "off", "up", "d
                         "then", "so", "right", "first", "instead"})
 
 
+# "The projector's been humming all afternoon. Off, please.": a bare "on" or "off" is about what was named (text v65)
+_BARE_SWITCH = frozenset({"on", "off", "please", "now", "then", "again", "thanks"})
+
+
 def _refers_back(text: str) -> bool:
     said = words(text)
+    if said and set(said) <= _BARE_SWITCH and set(said) & {"on", "off"}:
+        return True
     return any(w in _BACK_REFERENCE and (w not in ("this", "that") or i + 1 == len(said) or said[i + 1] in _POINTS_ON)
                for i, w in enumerate(said))
 
@@ -103,13 +109,13 @@ _COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|y
                        r"|\bbe (?:so |ever so )?(?:kind|good) (?:enough )?(?:as )?(?=to\b)", re.IGNORECASE)
 
 
-def _request_stems(intent: Intent, said: Collection[str],
-                   kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,)) -> list[list[str]]:
+def _request_stems(intent: Intent, said: Collection[str], kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,),
+                   pooled: bool = True) -> list[list[str]]:
     requests = [c for c in intent.clauses if c.kind in kinds]
     clauses = [_stems(_COURTESY.sub("", FILLER.sub("", c.text.strip()))) for c in requests]  # "ok wrap up …"
     # (an ability question's "it" is not looked up: "If Ben rings, could you answer it?" is
     # not a question about ringing him, and the robot's "yes" must be to what it names)
-    if ClauseKind.REQUEST in kinds and any(_refers_back(c.text) for c in requests):
+    if pooled and ClauseKind.REQUEST in kinds and any(_refers_back(c.text) for c in requests):
         # "the thing that throws pictures on the wall... turn it off": what "it" is was said before
         clauses += [_stems(c.text) for c in intent.clauses]
     if intent.answering:
@@ -119,12 +125,15 @@ def _request_stems(intent: Intent, said: Collection[str],
 
 def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[str, Any],
          said: Collection[str] = (), rivals: Iterable[Sequence[str]] = (), aliases: Iterable[str] = (),
-         elsewhere: Collection[str] = (), kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,)) -> bool:
+         elsewhere: Collection[str] = (), kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,),
+         pooled: bool = True) -> bool:
     """Some request clause (a clause of `kinds`) says a word of this call's vocabulary (True when none is declared;
     `aliases`: the words of its values' other names, "hall" for the hallway), and does not open
     with a rival tool's words (`rivals`: the declared words of each tool acting on the same
     thing) while this call's come later or are shorter: "hang up the call" and "ring off from
-    Anna" ask to end a call, not to start one.
+    Anna" ask to end a call, not to start one. `pooled`: a request that points back ("turn it
+    off") is read with every clause (False for the robot's stop and cancel: "That's enough of
+    that, turn it off. The call, I mean." is no stop, text test v65).
     A call without words for its arguments (a stop, a yes/no) does not fit a clause whose
     words for it only come before what another tool acts on (`elsewhere`: the other tools'
     `subject_words`): "you can stop the call now" is not the robot's stop."""
@@ -136,7 +145,7 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     if any(isinstance(value, str) for value in arguments.values()):
         aimed = set()  # a place or a person says what it acts on
     acts = vocabulary(name, declared, {})  # its own words: a message for somebody fits only through them
-    for clause in _request_stems(intent, said, kinds):
+    for clause in _request_stems(intent, said, kinds, pooled):
         own_only = _message(clause) or _handles(clause)
         if not any(_says_for_it(clause, phrase, aimed) for phrase in (acts if own_only else phrases)):
             continue

@@ -216,7 +216,7 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
     what to do there (text test v20: the robot's stop ran before the drive)."""
     elsewhere = [w for tool in declared if tool != name for w in subject_words(tool)]
     return fits(intent, name, declared.get(name, ()), arguments, said, [*_siblings(name, declared), *movers],
-                glossed, elsewhere, kinds)
+                glossed, elsewhere, kinds, pooled=not movers)
 
 
 def refusal(

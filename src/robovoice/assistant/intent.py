@@ -288,7 +288,8 @@ _NAMED_IT = re.compile(r"^that'?s (?:it|the one|the word|the thing|what it'?s ca
 # "…, and once you've got her, …": the step before done, then what follows
 _BACK_ONLY = re.compile(r"^\s*(?:with )?(?:him|her|them|it|that|this|through)?\W*$", re.IGNORECASE)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
-                    r"|(?:good|dear|bless) (?:me|grief|lord)|goodness)\b", re.IGNORECASE)  # "no, sorry, I'm muddled"
+                    r"|(?:good|dear|bless) (?:me|grief|lord)|goodness|(?:i )?beg your pardon)\b",  # (text test v65)
+                    re.IGNORECASE)  # "no, sorry, I'm muddled"
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
 _ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:the |my |your )?"

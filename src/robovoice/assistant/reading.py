@@ -131,10 +131,12 @@ _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|g
 _STAY_THERE = re.compile(r"\b(?:stop|halt|hold it|stay|wait|freeze)(?: right| just)? there\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
                         re.IGNORECASE)
+# "Living room first": the step as told to the model, the order said by the hint
+_LAST_FIRST = re.compile(r",?\s+first\W*$", re.IGNORECASE)
 # a bare "no" or "sorry" between a request and what puts it right; a request its own words
 # declined ("don't go to the kitchen") is no request a place after it puts right
-_LAST_FIRST = re.compile(r",?\s+first\W*$", re.IGNORECASE)
-_TAKING_BACK = re.compile(r"^(?:no|nope|no wait|wait|sorry|correction|or rather|rather|i mean[t]?)?[\s,.!]*$",
+_TAKING_BACK = re.compile(r"^(?:no|nope|no wait|wait|sorry|(?:i )?beg your pardon|pardon(?: me)?|correction|or rather"
+                          r"|rather|i mean[t]?)?[\s,.!]*$",
                           re.IGNORECASE)
 _SAID_NOT = re.compile(r"^(?:don'?t|do not|never|not|no need)\b", re.IGNORECASE)
 _COURTESY = re.compile(r"^(?:(?:could|can|would|will) you|please|just|now)\b[\s,]*", re.IGNORECASE)
