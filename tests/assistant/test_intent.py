@@ -1211,7 +1211,8 @@ def test_names_in_a_row_with_no_verb_are_a_list_not_calls() -> None:
     ("Abeg call Ben, I dey for kitchen.", ("Abeg call Ben",)),  # Pidgin "please"
     ("Ring Clara. No, I beg your pardon, I mean Anna.", ("I mean Anna",)),
     ("Off the projector and go to the bedroom.", ("Off the projector", "go to the bedroom")),
-    ("Go living room, then on the projector for the children.", ("Go living room", "on the projector for the children")),
+    ("Go living room, then on the projector for the children.",
+     ("Go living room", "on the projector for the children")),
     ("I'd like to know if you're able to go and charge without being reminded.", ()),  # what it can do
     ("I'd like to know where you are.", ("I'd like to know where you are",)),  # a look-up asked for
 ])

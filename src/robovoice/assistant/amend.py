@@ -32,7 +32,8 @@ from robovoice.assistant.lexicon import (
 )
 from robovoice.assistant.reading import Clause, ClauseKind
 
-_MARK = re.compile(r"^(?:sorry|(?:i )?beg your pardon|pardon(?: me)?|i mean[t]?|or rather|rather|correction|make (?:that|it))\b[\s,:;.-]*",
+_MARK = re.compile(r"^(?:sorry|(?:i )?beg your pardon|pardon(?: me)?|i mean[t]?|or rather|rather|correction"
+                   r"|make (?:that|it))\b[\s,:;.-]*",
                    re.IGNORECASE)
 # what follows "I mean" and is no place or person: "…, I mean it", "…, sorry love"
 _NOT_A_VALUE = re.compile(r"^(?:it|that|this|so|well|business|what i say|honestly|really|again|everyone|folks|all"

@@ -153,7 +153,8 @@ _COURSE = re.compile(r"^(?:set|shape|plot|lay|steer) (?:a |your |our )?course (?
 # … and "on" and "off" as verbs, as Nigerian English says them: "off the projector", "on the projector
 # so she can see" (text test v65); not a place ("on the table", "off the kitchen": no thing switched)
 _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+"
-                          r"|^(?:on|off) (?:the|that|your|this|my) (?:projector|telly|tv|television|screen|lamp|light)s?"
+                          r"|^(?:on|off) (?:the|that|your|this|my) (?:projector|telly|tv|television|screen|lamp"
+                          r"|light)s?"
                           r"(?: (?:so|then|and|please|now|for)\b|$)", re.IGNORECASE)
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
 _WHERE_WANTED = re.compile(r"(?:'s| is) where " + WANTED_THERE, re.IGNORECASE)
