@@ -415,3 +415,14 @@ def test_a_bare_off_after_the_thing_is_named_fits_and_turn_it_off_is_no_stop() -
         body = refusal(said, SPECS[name], {}, (), VOICE, tools=tools)
         assert body is not None, name
     assert refusal(read_request("Enough! Stop it!"), SPECS["stop_robot"], {}, (), VOICE, tools=tools) is None
+
+
+def test_the_doc_on_the_screen_is_the_call_and_it_looking_back_moves_nothing() -> None:
+    """Text test v66: "Get us the doc on the screen, …" switched the projector on ("doc" named
+    nobody), and "… front door sticks in the heat, give it a shove." drove ("it" pooled the door)."""
+    tools = list(SPECS.values())
+    said = read_request("Get us the doc on the screen, my knee's playing up.")
+    assert refusal(said, SPECS["start_video_call"], {"contact": "Dr. Weber"}, (), VOICE, tools=tools) is None
+    assert refusal(said, SPECS["set_projector_power"], {"on": True}, (), VOICE, tools=tools) is not None
+    said = read_request("The front door sticks in the heat. Give it a shove.")
+    assert refusal(said, SPECS["navigate_to"], {"target": "front door"}, (), VOICE, tools=tools) is not None

@@ -1224,3 +1224,19 @@ def test_pidgin_courtesy_a_formal_pardon_on_and_off_as_verbs_and_wanting_to_know
     assert read_request(text).steps == steps
     if "pardon" in text:
         assert read_request(text).worded_steps == ("Ring Anna",)
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Through to the kitchen, love.", ("Through to the kitchen",)),  # a way, a word for the robot after it
+    ("Into the bedroom, he went.", ()),  # told, not asked
+    ("Kitchen. Then call Clara. Over and out.", ("Kitchen", "call Clara")),  # a sign-off is no step
+    ("Pop into the living room, and once you've spotted her ring Clara.", ("Pop into the living room", "ring Clara")),
+    ("Message for Kirsty: the bathroom tap drips, give it a tighten.", ()),  # a note for somebody else
+    ("Note for you: go to the kitchen.", ("go to the kitchen",)),
+])
+def test_a_way_with_a_vocative_a_sign_off_once_youve_found_him_and_a_note_for_someone(
+        text: str, steps: tuple[str, ...]) -> None:
+    """Text test v66: "Into the bedroom, mate." asked nothing; "Stop. Back to dock. Call Ben. Out."
+    ended the call; "…, and once you've found him ring his girl Anna" put "find him" first; "Note
+    for Dad: front door sticks in the heat, give it a shove." drove to the front door."""
+    assert read_request(text).steps == steps

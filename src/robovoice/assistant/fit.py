@@ -24,7 +24,7 @@ from typing import Any
 from robovoice.assistant.lexicon import FILLER, words
 from robovoice.assistant.reading import ClauseKind, Intent
 
-_SHORT_FORMS = {"dr": "doctor", "mr": "mister", "mrs": "missus", "neighbor": "neighbour"}
+_SHORT_FORMS = {"dr": "doctor", "doc": "doctor", "mr": "mister", "mrs": "missus", "neighbor": "neighbour"}
 _BACK_REFERENCE = frozenset({"it", "them", "that", "one", "this"})
 # "this" and "that" before a noun name it ("stop this call": no back reference, text test v49);
 # before these, or last, they point back ("turn that off", "this thing")
@@ -228,7 +228,8 @@ def claimed_elsewhere(intent: Intent, name: str, arguments: Mapping[str, Any],
         hits = [phrase for phrase in own if _says(clause, phrase)]
         if not hits:
             continue
-        if not any(all(h in stems for h in hits) and set(clause) & set(values.get(tool, ()))
+        heard = set(clause) | {stem(w) for w in usual(clause)}  # "the doc on the screen": the doctor (text v66)
+        if not any(all(h in stems for h in hits) and heard & set(values.get(tool, ()))
                    for tool, stems in theirs.items()):
             return False  # this clause asks for this call in its own words
         claimed = True

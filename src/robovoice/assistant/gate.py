@@ -185,6 +185,13 @@ def _movers(name: str, voice: Mapping[str, VoiceDecl]) -> list[Sequence[str]]:
     return [section.words for section in voice.values() if section.role == "motion"]
 
 
+def _moves(name: str, voice: Mapping[str, VoiceDecl]) -> bool:
+    """A tool that moves the robot or halts it (voice roles "motion", "stop", "cancel"): asked for by a
+    request's own words, never through a "turn it off" or "give it a shove" that looks back at
+    something named ("… front door sticks, give it a shove", text test v66, drove there)."""
+    return name in voice and voice[name].role in ("motion", "stop", "cancel")
+
+
 def _glossed(spec: ToolSpec | None, arguments: Mapping[str, Any]) -> list[str]:
     """The words of the other names the tool's description gives the call's values ("the loo"
     is the bathroom)."""
@@ -209,14 +216,15 @@ def _about_this(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], sa
 
 def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collection[str],
           declared: Mapping[str, Sequence[str]], glossed: Sequence[str],
-          kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,), movers: Sequence[Sequence[str]] = ()) -> bool:
+          kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,), movers: Sequence[Sequence[str]] = (),
+          pooled: bool = True) -> bool:
     """`fit.fits` for this call, with its rivals and what the other tools act on taken from
     every tool's declared words. `movers`: the words of the tools that move the robot, rivals of
     its stop and cancel: "go and wait by the front door" opens with the drive, and its "wait" is
     what to do there (text test v20: the robot's stop ran before the drive)."""
     elsewhere = [w for tool in declared if tool != name for w in subject_words(tool)]
     return fits(intent, name, declared.get(name, ()), arguments, said, [*_siblings(name, declared), *movers],
-                glossed, elsewhere, kinds, pooled=not movers)
+                glossed, elsewhere, kinds, pooled=pooled)
 
 
 def refusal(
@@ -255,7 +263,8 @@ def refusal(
         elif spec is not None and switches_the_one_thing_off(
                 intent, name, arguments, said, {t.name: t.parameters for t in tools if not t.read_only}):
             return None  # "turn it off": the one thing it can switch
-        elif not _fits(intent, name, arguments, said, declared, glossed, movers=_movers(name, voice or {})) or \
+        elif not _fits(intent, name, arguments, said, declared, glossed, movers=_movers(name, voice or {}),
+                       pooled=not _moves(name, voice or {})) or \
                 claimed_elsewhere(intent, name, arguments, declared, values, said) or owner:
             why = OTHER  # "plug yourself in" and the projector; "get Ben up on the screen" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):

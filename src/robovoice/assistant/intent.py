@@ -82,6 +82,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
     amending = False  # right after a bare "sorry" or "I mean" (amend)
+    noted = False  # after "Note for Dad:": what follows is for somebody else
     text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
     for part in _actually_only(arrival_first(split_clauses(text))):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
@@ -93,6 +94,10 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses = fixed
             continue
         bare = FILLER.sub("", part.strip()).strip()
+        if noted or _SIGN_OFF.match(bare) or _NOTE_FOR.match(bare):  # "… Call Ben. Out."; "Note for Dad: …"
+            noted = noted or bool(_NOTE_FOR.match(bare))
+            clauses.append(Clause(part, ClauseKind.STATEMENT))
+            continue
         if (_OPINION.match(bare) or _OR_ONLY.match(bare)) and clauses and clauses[-1].kind is ClauseKind.REQUEST and \
                 asked_as_question(clauses[-1].text):
             # "can you fit through the front door, do you reckon?": whether it could, not a request
@@ -150,6 +155,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 any(c.kind is ClauseKind.REQUEST and done in words(c.text) for c in clauses) and \
                 classify(rest := bare[sequence.end():]) is ClauseKind.REQUEST:
             kind, part = ClauseKind.REQUEST, rest.strip()  # "stop, and once you've stopped go to …": the next step
+        elif sequence and (him := _HIM_THEN.match(bare[sequence.end():])) and any(
+                c.kind is ClauseKind.REQUEST for c in clauses) and classify(him.group(1)) is ClauseKind.REQUEST:
+            kind, part = ClauseKind.REQUEST, him.group(1)  # "…, and once you've found him ring Anna" (text v66)
         elif sequence and _BACK_ONLY.match(bare[sequence.end():]) and any(c.kind is ClauseKind.REQUEST
                                                                           for c in clauses):
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # "video-chat Clara, and once you've got her, …"
@@ -284,8 +292,14 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
 
 
 _JUST = re.compile(r"^(?:just|only)\s+", re.IGNORECASE)
+# radio talk's sign-off (text test v66: "Stop. Back to dock. Call Ben. Out." ended the call) and a note's heading
+_SIGN_OFF = re.compile(r"^(?:(?:over and )?out|over|roger(?: that)?|that'?s all(?: for now)?|end of message)$",
+                       re.IGNORECASE)
+_NOTE_FOR = re.compile(r"^(?:a )?(?:note|message|reminder|memo) (?:for|to) (?!you\b|the robot\b|jarvis\b)\w+",
+                       re.IGNORECASE)
 _NAMED_IT = re.compile(r"^that'?s (?:it|the one|the word|the thing|what it'?s called)$", re.IGNORECASE)
 # "…, and once you've got her, …": the step before done, then what follows
+_HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
 _BACK_ONLY = re.compile(r"^\s*(?:with )?(?:him|her|them|it|that|this|through)?\W*$", re.IGNORECASE)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
                     r"|(?:good|dear|bless) (?:me|grief|lord)|goodness|(?:i )?beg your pardon)\b",  # (text test v65)

@@ -182,12 +182,17 @@ def _described(text: str) -> bool:
     return bool(said) and said[0] in _WAYS and "you" not in said and "please" not in said
 
 
+_WAY_TO = re.compile(r"^(?:into|in to|through to|through into|over to|back to|off to|on to|out to|round to)"
+                     r" (?:the|my|your) \w+(?: \w+)?$", re.IGNORECASE)
+
+
 def tag_asks(before: Clause, tag: str) -> bool:
     """Whether the tag makes the clause before it a request: an ability question that asks with
     it ("would you ever …, please?"), a bare place or thing with "please", "if you would" or
     haste ("Bedroom, please.", "Front door, Jarvis, chop chop": the name between says nothing)."""
     if before.kind is ClauseKind.ABILITY:
         return classify(f"{before.text} {tag.strip()}") is ClauseKind.REQUEST
-    urges = re.search(r"\bplease\b|^\s*if you\b", tag, re.IGNORECASE) or HASTE.match(tag.strip())
-    return before.kind is ClauseKind.STATEMENT and fragment(before.text) and urges is not None \
+    way = _WAY_TO.match(before.text.strip())  # "Into the bedroom, mate.": a way, said to the robot (text v66)
+    urges = re.search(r"\bplease\b|^\s*if you\b", tag, re.IGNORECASE) or HASTE.match(tag.strip()) or way
+    return before.kind is ClauseKind.STATEMENT and (fragment(before.text) or bool(way)) and urges is not None \
         and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
