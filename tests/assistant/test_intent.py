@@ -1240,3 +1240,11 @@ def test_a_way_with_a_vocative_a_sign_off_once_youve_found_him_and_a_note_for_so
     ended the call; "…, and once you've found him ring his girl Anna" put "find him" first; "Note
     for Dad: front door sticks in the heat, give it a shove." drove to the front door."""
     assert read_request(text).steps == steps
+
+
+def test_a_noun_in_a_requests_shape_with_a_verb_of_telling_after_it_is_talk() -> None:
+    """Audio test v57: "Merv's kitchen on the farm had a wood stove" heard "first kitchen on the
+    farm had a wood stove." drove to the kitchen: "kitchen on the" had the shape of "switch on
+    the"."""
+    assert read_request("you know, first kitchen on the farm had a wood stove.").steps == ()
+    assert read_request("Flick on the telly.").steps == ("Flick on the telly",)

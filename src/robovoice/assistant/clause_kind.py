@@ -137,6 +137,9 @@ _KNOW_IF_ABLE = re.compile(r"^i(?:'d| would| should)? (?:like|love|want|wish) to
                            r"(?:'re| are| would be| might be| will be)? (?:capable|able)\b"
                            r"|^i(?:'d| would| should)? (?:like|love|want|wish) to know (?:whether|if) (?:you|it) "
                            r"(?:can|could|know how to)\b", re.IGNORECASE)
+# A word the shape of a request took for a verb, with a verb of telling after it: "first kitchen on the
+# farm had a wood stove" (audio test v57: it drove to the kitchen) is about the kitchen, no request
+_TOLD_OF = re.compile(r"\b(?:had|has|was|were|is|are|used to)\b")
 # "kindly be going to the kitchen" (text test v49)
 _BE_GOING = re.compile(r"^be (?:going|coming|heading|moving|off) (?:to|into|in|through|over|back)\b", re.IGNORECASE)
 # a thing to be switched, said as what may happen to it: "the projector can go off now" (text v50)
@@ -205,7 +208,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
-    if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))):
+    if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))
+                                and not _TOLD_OF.search(lowered[shape.end():])):
         return ClauseKind.REQUEST
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text) \
             or _COURSE.match(text) or _CAN_GO.match(text) or _TO_PLACE.match(text):
