@@ -1248,3 +1248,38 @@ def test_a_noun_in_a_requests_shape_with_a_verb_of_telling_after_it_is_talk() ->
     the"."""
     assert read_request("you know, first kitchen on the farm had a wood stove.").steps == ()
     assert read_request("Flick on the telly.").steps == ("Flick on the telly",)
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Ask the robot not to go into the bathroom, the tiles are slippery.", ()),  # passed on: not wanted
+    ("Tell it to go to the bedroom.", ("go to the bedroom",)),
+    ("Right, cut the call please, we're done.", ("cut the call please",)),
+    ("I would request you to go to the bedroom.", ("I would request you to go to the bedroom",)),
+    ("Change of plan: the bathroom instead.", ("the bathroom instead",)),
+    ("Once you reach the bedroom, switch the projector on.", ("go to the bedroom", "switch the projector on")),
+    ("Projector chalu kar do, please.", ("Projector on",)),
+    ("Arre, please projector bandh kar do.", ("please projector off",)),
+    ("Can you make the projector brighter, or does it only go on and off?", ()),
+    ("dude head to the kitchen", ("dude head to the kitchen",)),
+])
+def test_passed_on_not_to_cut_i_request_a_new_plan_once_you_reach_hindi_switches_and_on_and_off(
+        text: str, steps: tuple[str, ...]) -> None:
+    """Text test v68: "Tell the machine not to go in the kitchen, …" drove; "Tell the machine to
+    cut the call now", "I would request you to move to the hallway", "ok new plan, living room
+    instead", "Projector band karo, …", "Once you reach the front door, tell it to call Anna" and
+    "bro go charge" lost steps; "could you like dim the projector, or is it just on and off?"
+    switched it off."""
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("After you switch the projector off head to the bedroom.", ("switch the projector off", "head to the bedroom")),
+    ("before you call Ben go to the kitchen", ("go to the kitchen", "call Ben")),
+    ("Before ringing the doctor, go to the bedroom.", ("go to the bedroom", "ring the doctor")),  # (audio v59)
+    ("before going to bed I read a book", ()),  # somebody else doing it
+    ("Before charging, switch the projector off.", ("switch the projector off",)),  # no thing it is done to
+])
+def test_an_order_words_clause_run_into_the_command_without_a_comma(text: str, steps: tuple[str, ...]) -> None:
+    """Audio test v58: "before you call Clara switch on the projector." (heard with no comma) was
+    one request, and the call was never made."""
+    assert read_request(text).steps == steps

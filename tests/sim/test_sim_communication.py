@@ -23,6 +23,7 @@ CONTACTS = [{"name": "Anna", "relation": "daughter"}, {"name": "Ben", "relation"
         ("ben", "Ben"), ("Clara", "Clara"), ("the neighbor", "Clara"),
         ("Dr. Weber", "Dr. Weber"), ("Dr Weber", "Dr. Weber"), ("Doctor Weber", "Dr. Weber"),
         ("weber", "Dr. Weber"), ("the doctor", "Dr. Weber"), ("dr. weber", "Dr. Weber"),
+        ("Anna beta", "Anna"), ("Ben ji", "Ben"), ("Clara dear", "Clara"),  # a word of endearment or respect after
     ],
 )
 def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
@@ -31,7 +32,7 @@ def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
     assert contact.name == name
 
 
-@pytest.mark.parametrize("text", ["Bob", "Annabel", "Dr. Miller", "dr", "", "mum", "Weber Anna"])
+@pytest.mark.parametrize("text", ["Bob", "Annabel", "Dr. Miller", "dr", "", "mum", "Weber Anna", "beta", "Bob ji"])
 def test_unknown_contacts_are_not_guessed(text: str) -> None:
     assert find_contact(text) is None
 

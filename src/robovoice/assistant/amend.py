@@ -171,7 +171,8 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
         # "Bedroom. Then call Ben.": a bare place said first, right before "then" and a request, is a step too
         # (text test v52)
         # ("Bathroom, then the bedroom, and then home to the dock with you": the places before it too, text v63)
-        first = next((i for i, c in enumerate(clauses) if FILLER.sub("", c.text).strip()), None)
+        said = [i for i, c in enumerate(clauses) if FILLER.sub("", c.text).strip()]
+        first = said[0] if said else None
         run = first
         while run is not None and run + 1 in places and _then_before(clauses[run + 1], text):
             run += 1
@@ -180,7 +181,6 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
                 and not _GREETING.match(clauses[first].text.strip()) and _then_before(clauses[run + 1], text):
             steps |= set(range(first, run + 1))
         # "front door, after that the kitchen": nothing but places, one after the other (text test v63)
-        said = [i for i, c in enumerate(clauses) if FILLER.sub("", c.text).strip()]
         # (not a question: "kitchen, then the bedroom?", where the glasses may be)
         if len(said) > 1 and set(said) <= places and said == list(range(said[0], said[-1] + 1)) \
                 and not text.rstrip().endswith("?") \

@@ -53,6 +53,7 @@ _POLITE = re.compile(
     r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
     r"^i(?:'d| would| should) (?:(?:very much|really|so much) )?like (?:you|to|the|my|a|an|some|it)\b"
     r"|^i(?:'d| would) (?:really )?love\b|"  # "I'd very much like to speak to my nephew Ben" (text test v63)
+    r"^i(?:'d| would)? (?:kindly )?request you to\b|"  # "I would request you to move to …" (text test v68)
     # (not what someone else is to do: "I want Anna to see the garden", text test v34)
     r"^i (?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b|to\b)\w+) to \w)|"
     r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
@@ -134,9 +135,8 @@ _YOU_NOW = re.compile(rf"^you (?:{ROBOT_ACTIONS}|move|roll|finish|stop|make|take
                       r"all the time|yesterday|last)\b)", re.IGNORECASE)
 # "I should like to know whether you are capable of taking yourself off …" asks what it can do (text test v65)
 _KNOW_IF_ABLE = re.compile(r"^i(?:'d| would| should)? (?:like|love|want|wish) to know (?:whether|if) (?:you|it)"
-                           r"(?:'re| are| would be| might be| will be)? (?:capable|able)\b"
-                           r"|^i(?:'d| would| should)? (?:like|love|want|wish) to know (?:whether|if) (?:you|it) "
-                           r"(?:can|could|know how to)\b", re.IGNORECASE)
+                           r"(?:(?:'re| are| would be| might be| will be)? (?:capable|able)\b"
+                           r"| (?:can|could|know how to)\b)", re.IGNORECASE)
 # A word the shape of a request took for a verb, with a verb of telling after it: "first kitchen on the
 # farm had a wood stove" (audio test v57: it drove to the kitchen) is about the kitchen, no request
 _TOLD_OF = re.compile(r"\b(?:had|has|was|were|is|are|used to)\b")

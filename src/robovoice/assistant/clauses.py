@@ -41,6 +41,9 @@ _RELAYED = re.compile(r"^(?:(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|w
                       r"|(?:(?:please|kindly|just|go on) )?(?:tell|ask) (?:it|the robot|the machine|jarvis) to)"
                       r"\s+(?=\w)",
                       re.IGNORECASE)
+# "tell the machine not to go in the kitchen": the same, not wanted (text test v68)
+_RELAYED_NOT = re.compile(r"^(?:(?:please|kindly|just) )?(?:tell|ask) (?:it|the robot|the machine|jarvis) "
+                          r"not to\s+(?=\w)", re.IGNORECASE)
 # "call her and, uh, then …": a conjunction left at the end by the comma after it (not at the
 # very end: "Hey Jarvis, go and" was cut off)
 _TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
@@ -83,21 +86,28 @@ _CALL_COMMA = re.compile(r"(?<!\bthe )(?<!\ba )(?<!\bvideo )\b((?i:call|ring|pho
 
 # "before you go charge can you switch the projector off": the comma speech-to-text (or a
 # hurried typist) left out between the step said first and the request (text test v39)
-_ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+(?=(?:can|could|would|will) you \w)",
-                             re.IGNORECASE)
+# … or before a command ("before you call Clara switch on the projector", audio test v58)
+_ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+(?=(?:can|could|would|will) you \w"
+                             r"|(?<!^before you )(?<!^after you )(?<!^once you )"
+                             r"(?:switch|turn|put|call|ring|phone|give|go|head|come|drive) "
+                             r"(?:on|off|the|to|into|a|an|my|your|her|him|them|[A-Z]\w+)\b)", re.IGNORECASE)
 
 
 # "once it's up and running, ring Anna": one state, no "and" between two clauses (text test v64)
 _UP_AND = re.compile(r"\bup and (?:running|going)\b", re.IGNORECASE)
 
 
+# "is it just on and off?": one way of working, not two switches (text test v68)
+_ON_AND_OFF = re.compile(r"\b(on|off) and (?!\1\b)(on|off)\b", re.IGNORECASE)
+
+
 def split_clauses(text: str) -> list[str]:
-    text = _UP_AND.sub("up", text)
+    text = _ON_AND_OFF.sub(r"\1-and-\2", _UP_AND.sub("up", text))
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
     text = _AND_WAIT.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", _AWAY_AND.sub("go and ", text))))
     text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
-    parts = [p for i, p in enumerate(_RELAYED.sub("", _done_then(_LEADING.sub("", p.strip(" ,.;:!?-\"'")), i))
-                                     for i, p in enumerate(_SPLIT.split(text))) if p]
+    said = (_done_then(_LEADING.sub("", p.strip(" ,.;:!?-\"'")), i) for i, p in enumerate(_SPLIT.split(text)))
+    parts = [p for p in (_RELAYED.sub("", _RELAYED_NOT.sub("don't ", p)) for p in said) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]
 
 

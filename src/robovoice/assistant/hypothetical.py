@@ -110,8 +110,8 @@ SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| hav
                       rf"(?!(?:got )?{_A_MOMENT})(\w+)", re.IGNORECASE)
 # Being somewhere as the first step: "once you're in the bedroom, …" (not "when you're in the
 # kitchen, …": that may be whenever it is), and "… once you've got to the bedroom", said last.
-ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (text test v55)
-                        r"(?:in|at|by|inside|into) "
+ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (text test v55)
+                        r"(?:in|at|by|inside|into)| (?:reach|get to|arrive at|make it to)) "  # (text test v68)
                         r"((?:the|my|your) \w+(?: \w+)?)$", re.IGNORECASE)
 ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|inside) (?:the|my|your) \w+(?: \w+)?"
                      r"|(?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"

@@ -66,6 +66,21 @@ from robovoice.assistant.lexicon import (
     words,
 )
 from robovoice.assistant.neighbours import settle, tag_asks
+from robovoice.assistant.order_words import (
+    AFTER,
+    AFTER_YOU,
+    BACK_ONLY,
+    BEFORE_THAT,
+    FIRST,
+    FIRST_ALONE,
+    HIM_THEN,
+    NOT_BEFORE,
+    ORDERED_FRAGMENT,
+    PAUSE,
+    THAT_FIRST,
+    URGE,
+    before_you,
+)
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
 from robovoice.assistant.said_order import arrival_first
 
@@ -107,7 +122,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         kind = classify(part)
         if kind is ClauseKind.ABILITY and asks_ever(part, text):
             kind = classify(re.sub(r"\bever\s+", "", part, count=1))  # "would you ever …, for me?"
-        if (after := _AFTER.match(bare)) is not None:
+        if (after := AFTER.match(bare)) is not None:
             rest, order = bare[after.end():], after.group(0).strip(" ,").lower()
             if not rest and clauses:
                 continue  # "…, and after, the bedroom": an order word, as "then" is
@@ -132,33 +147,33 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if corrected and bare.lower() == "wait":
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # "…, no, wait, the hallway": a pause, not a stop
             continue
-        if _THAT_FIRST.match(bare):
+        if THAT_FIRST.match(bare):
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # "where are you? Tell me that first, …"
             continue
-        if _BEFORE_THAT.match(bare):
+        if BEFORE_THAT.match(bare):
             front = _first_asked(clauses)
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
-        if (before := _BEFORE_YOU.match(bare)) and classify(before.group(1)) is ClauseKind.REQUEST:
+        if (first_said := before_you(bare)) and classify(first_said) is ClauseKind.REQUEST:
             # "before you ring Clara, put the projector on": the call comes after what follows
-            clauses.append(Clause(before.group(1), ClauseKind.REQUEST))
+            clauses.append(Clause(first_said, ClauseKind.REQUEST))
             front = len(clauses) - 1
             continue
-        if kind is ClauseKind.REQUEST and undone and _FIRST.search(part.strip()) and not fragment(part):
+        if kind is ClauseKind.REQUEST and undone and FIRST.search(part.strip()) and not fragment(part):
             # "ring Anna — oh wait, no, go to the bedroom first": not instead of the call, before it
-            clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and not _PAUSE.match(c.text) else c
+            clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and not PAUSE.match(c.text) else c
                        for i, c in enumerate(clauses)]
             undone, corrected = [], False
-        if kind is ClauseKind.REQUEST and _FIRST.search(part.strip()):
+        if kind is ClauseKind.REQUEST and FIRST.search(part.strip()):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
         if (sequence := SEQUENCE.match(bare)) and (done := base_form(sequence.group(1))) and \
                 any(c.kind is ClauseKind.REQUEST and done in words(c.text) for c in clauses) and \
                 classify(rest := bare[sequence.end():]) is ClauseKind.REQUEST:
             kind, part = ClauseKind.REQUEST, rest.strip()  # "stop, and once you've stopped go to …": the next step
-        elif sequence and (him := _HIM_THEN.match(bare[sequence.end():])) and any(
+        elif sequence and (him := HIM_THEN.match(bare[sequence.end():])) and any(
                 c.kind is ClauseKind.REQUEST for c in clauses) and classify(him.group(1)) is ClauseKind.REQUEST:
             kind, part = ClauseKind.REQUEST, him.group(1)  # "…, and once you've found him ring Anna" (text v66)
-        elif sequence and _BACK_ONLY.match(bare[sequence.end():]) and any(c.kind is ClauseKind.REQUEST
+        elif sequence and BACK_ONLY.match(bare[sequence.end():]) and any(c.kind is ClauseKind.REQUEST
                                                                           for c in clauses):
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # "video-chat Clara, and once you've got her, …"
             continue
@@ -167,7 +182,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # your battery"), before what was asked already ("call Anna, but only after you've come in")
             kind, part = ClauseKind.REQUEST, base_form(sequence.group(1)) + bare[sequence.end():]
             front = _first_asked(clauses)
-        elif (after := _AFTER_YOU.match(bare)) and classify(after.group(1)) is ClauseKind.REQUEST:
+        elif (after := AFTER_YOU.match(bare)) and classify(after.group(1)) is ClauseKind.REQUEST:
             kind, part = ClauseKind.REQUEST, after.group(1)  # "after you turn the projector off, …": that first
             front = _first_asked(clauses)
         elif there := ONCE_THERE.match(bare):
@@ -204,8 +219,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
         previous = clauses[at] if (at := _last_said(clauses)) is not None else None
-        ordered = bool(_ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip())) or (  # "first the kitchen"
-            clauses and _FIRST_ALONE.match(clauses[-1].text.strip()) is not None and fragment(part))  # "First, the …"
+        ordered = bool(ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip())) or (  # "first the kitchen"
+            clauses and FIRST_ALONE.match(clauses[-1].text.strip()) is not None and fragment(part))  # "First, the …"
         you_do = YOU_DO.match(bare) and IMPERATIVE_SHAPE.match(bare[4:])  # "…, then you go to the hallway"
         if kind is ClauseKind.STATEMENT and (ordered or ((fragment(part) or you_do) and (
                 corrected or (front is not None and _NAMED.match(bare))  # "Before that, the kitchen."
@@ -216,13 +231,13 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             if ordered and front is None and re.search(r"\bfirst\W*$", part) and _first_asked(clauses) is not None \
                     and not any(thing <= set(words(c.text)) for c in clauses):
                 front = _first_asked(clauses)  # "Turn the projector on. Wait. Living room first." (text test v64)
-                if previous is not None and at is not None and _PAUSE.match(previous.text.strip()):
+                if previous is not None and at is not None and PAUSE.match(previous.text.strip()):
                     clauses[at] = Clause(previous.text, ClauseKind.STATEMENT)  # the "wait": a pause, no stop
         if kind is ClauseKind.STATEMENT and previous is not None and previous.kind is ClauseKind.REQUEST \
                 and _MIND_DOING.search(previous.text) and _doing(bare):
             kind = ClauseKind.REQUEST  # "would you mind turning the projector on and then calling Dr. Weber?"
         if kind is ClauseKind.REQUEST and previous is not None and at is not None and previous.kind is kind \
-                and _URGE.match(previous.text.strip()):
+                and URGE.match(previous.text.strip()):
             clauses[at] = Clause(previous.text, ClauseKind.STATEMENT)  # "Ah go on, give Ben a ring": the urging
         if kind is ClauseKind.REQUEST and condition:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
@@ -276,7 +291,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         clauses.append(Clause(part, kind))
     for i in range(1, len(clauses)):  # "…, you can go to the bathroom, but not before"; "ring Clara. Not at the moment"
-        if clauses[i].kind is ClauseKind.NEGATED and _NOT_BEFORE.match(clauses[i].text.strip()) \
+        if clauses[i].kind is ClauseKind.NEGATED and NOT_BEFORE.match(clauses[i].text.strip()) \
                 and clauses[i - 1].kind is ClauseKind.REQUEST and not STOP.search(clauses[i - 1].text):
             clauses[i - 1] = Clause(clauses[i - 1].text, ClauseKind.NEGATED)
     if condition and conditioned is not None:  # a condition after the request, nothing after it to apply to:
@@ -298,36 +313,18 @@ _SIGN_OFF = re.compile(r"^(?:(?:over and )?out|over|roger(?: that)?|that'?s all(
 _NOTE_FOR = re.compile(r"^(?:a )?(?:note|message|reminder|memo) (?:for|to) (?!you\b|the robot\b|jarvis\b)\w+",
                        re.IGNORECASE)
 _NAMED_IT = re.compile(r"^that'?s (?:it|the one|the word|the thing|what it'?s called)$", re.IGNORECASE)
-# "…, and once you've got her, …": the step before done, then what follows
-_HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
-_BACK_ONLY = re.compile(r"^\s*(?:with )?(?:him|her|them|it|that|this|through)?\W*$", re.IGNORECASE)
 _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|what'?s (?:wrong with|got into) me"
                     r"|(?:good|dear|bless) (?:me|grief|lord)|goodness|(?:i )?beg your pardon)\b",  # (text test v65)
                     re.IGNORECASE)  # "no, sorry, I'm muddled"
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
-# A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
-_ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:the |my |your )?"
-                               r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
-_FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
-_OR_ONLY = re.compile(r"^or (?:only|just|merely)\b", re.IGNORECASE)  # "can you call the surgery, or only Dr. Weber?"
+# "can you call the surgery, or only Dr. Weber?"; "could you dim it, or is it just on and off?" (text test v68)
+_OR_ONLY = re.compile(r"^or (?:(?:is it|are you|do you|can you|does it|can it) )?(?:only|just|merely)\b", re.IGNORECASE)
 _SOMEONES = re.compile(r"^\s+(?:[A-Z]\w+|my \w+|the \w+)'s\b")  # "… see Anna's recipe": hers, not her
 _SEEN = re.compile(r"^\s+(?:something|it|that|this|them|the|a|an|my|our|some|what|how)\b")  # "… see something": a look
-# not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41)
-_AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
-                    r"|followed by)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
-# "Tell me that first": the question said before it is the step, and it is first already.
-_THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."
 _NOW = re.compile(r"\b(?:now|please)\b", re.IGNORECASE)
-# Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
-_BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
-_BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 _NAMED = re.compile(r"^(?:the|my|your)\s", re.IGNORECASE)
-_URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now| so)?$", re.IGNORECASE)  # "go on so" (v59)
-_PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
-_AFTER_YOU = re.compile(r"^(?:after|once|as soon as) you (?!(?:'|are|get|go there|arrive)\b)(\w+ \w.*)$", re.IGNORECASE)
-_FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 
 
 # A request about someone an earlier request named ("…, can you get him on the screen?") asks for that again.
@@ -337,13 +334,6 @@ _BACK_TO_SOMEONE = re.compile(r"(?!(?:please |kindly |just |now )*(?:go|come|hea
                               r"[^,]*\b(?:to|into) (?:the|my|our)\b)"
                               r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
-
-
-# a time said before, held to (audio test v42: "after his lunch you can …, but not before")
-# and a time that is not now, said after the request (text test v63: "…, but not at the moment, thank you")
-_NOT_BEFORE = re.compile(r"^(?:but |though )?(?:not (?:before|until then|till then|(?:just )?yet|(?:just |right )?now"
-                         r"|at the moment|at present|this minute|today|tonight)|no sooner)"
-                         r"(?:,? (?:though|thanks|thank you|please|mind))*[\s.!]*$", re.IGNORECASE)
 _ACTUALLY = re.compile(r"^\s*actually\b[\s,]*", re.IGNORECASE)
 _ONLY_THIS = re.compile(r"^(?:just|only)\s+(?!(?:a|one) (?:sec|second|minute|moment|mo)\b)", re.IGNORECASE)
 

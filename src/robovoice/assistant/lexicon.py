@@ -20,6 +20,7 @@ FILLER = re.compile(
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|i mean|i meant|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|ah|ahh|aah|aw|k|like|what am i saying|what was i thinking|silly me|y'all|yo|"
+    r"bro|bruh|dude|yaar|arre|arey|accha|achha|acha|"  # young people's and Hinglish openers (text test v68)
     r"(?:i'?ll )?tell you what|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
@@ -63,6 +64,7 @@ IMPERATIVES = frozenset({
     "steer",  # "steer for the bathroom" (text test v48)
     "ping", "drop",  # a gadget's words: "ping Ben on video", "drop the call" (text test v54)
     "disconnect",  # "please disconnect this call now" (audio test v40)
+    "cut",  # "cut the call now" (text test v68)
     "douse",  # "douse the projector" (text test v63)
 })
 # The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
@@ -215,7 +217,8 @@ _HOLD_STILL = re.compile(r"^(?:stay|remain)\b")
 def fragment(part: str) -> bool:
     """A verbless continuation: "the bedroom", "to the front door", "Ben" (not a hedge: "I guess")."""
     text = FILLER.sub("", part.strip()).strip().lower()
-    text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well|with you)$", "", text)  # "back to bed with you"
+    # "back to bed with you"; "living room instead" (text test v68)
+    text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well|with you|instead)$", "", text)
     text = _PURPOSE.sub(r"\1", text)  # what it is for: "the front door to see me out"
     return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and not DO_THOSE.match(text) \
         and not _HOLD_STILL.match(text) and bool(re.match(
@@ -276,11 +279,16 @@ def plain(text: str) -> str:
     text = _SO_KIND_AS_TO.sub("please", text)  # a courtesy, not a condition
     text = _NO_TAG.sub(".", text)  # "tell it to go to the bedroom, no?": a tag asking agreement (text test v61)
     text = _NEXT_DOOR.sub("nextdoor", text)  # "Clara next door": the neighbour's, no door of the home (text test v58)
+    text = _HINDI_OFF.sub("off", _HINDI_ON.sub("on", text))  # "Projector band karo": "projector off" (text test v68)
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 
 _NO_TAG = re.compile(r"(?<=\w),\s*no\?", re.IGNORECASE)
 _NEXT_DOOR = re.compile(r"\bnext door\b", re.IGNORECASE)
+# Hindi's "switch off" and "switch on", said after the thing in Indian English
+_HINDI_DO = r"\s+(?:karo|kar do|kar de|kardo|karde|kijiye|kar dijiye|kar dena)\b"
+_HINDI_OFF = re.compile(r"\b(?:band|bandh|bund)" + _HINDI_DO, re.IGNORECASE)
+_HINDI_ON = re.compile(r"\b(?:chalu|chaalu|on|start)" + _HINDI_DO, re.IGNORECASE)
 
 
 # a word said again after a hesitation or a search for the word ("Put the, um, the …", "switch on
@@ -308,7 +316,8 @@ _THATS_WHERE = re.compile(r"\b((?:the|my|your) \w+(?: \w+)?)\s*(?:,|—|-)\s*tha
 LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:little |small |more )?"
                         r"(?:things|jobs|tasks|errands)(?: for you| to do)?$"
                         # a heading for where to go instead: "Reroute: front door, …" (text test v54)
-                        r"|^(?:reroute|redirect|new destination)$", re.IGNORECASE)
+                        r"|^(?:reroute|redirect|new destination"
+                        r"|(?:a )?new plan|change of plans?|plan b)$", re.IGNORECASE)  # "ok new plan, …" (text v68)
 
 # Vague words that end a list of requests ("…, and turn the projector on and stuff"): no step
 VAGUE = re.compile(r"^(?:stuff|things|everything|whatever|all that|and so on|so on|that sort of thing|etc)$",

@@ -63,6 +63,8 @@ CONTACTS: tuple[Contact, ...] = (
 
 _LEADING = re.compile(r"^(?:my|the|our)\s+")
 _TITLE = re.compile(r"^(?:dr|doctor|mr|mrs|ms|miss)\s+")
+# a word of endearment or respect after the name: "Anna beta", "Ben ji", "Anna dear" (text test v68)
+_ENDEARMENT = re.compile(r"\s+(?:beta|ji|didi|bhaiya|bhai|dear|love|darling|sweetie)$")
 
 
 def _normalise(text: str) -> str:
@@ -74,7 +76,7 @@ def _normalise(text: str) -> str:
 
 def find_contact(text: str) -> Contact | None:
     key = _normalise(text)
-    candidates = {key, _TITLE.sub("", key)} - {""}
+    candidates = {key, _TITLE.sub("", key), _ENDEARMENT.sub("", key)} - {""}
     return next((c for c in CONTACTS if candidates & c.keys), None)
 
 
