@@ -1283,3 +1283,15 @@ def test_an_order_words_clause_run_into_the_command_without_a_comma(text: str, s
     """Audio test v58: "before you call Clara switch on the projector." (heard with no comma) was
     one request, and the call was never made."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("The projector off now, thanks.", ("The projector off now",)),
+    ("Please the projector off now.", ("Please the projector off now",)),
+    ("the telly's off now", ()),  # told, not asked
+    ("Ben is off now", ()),
+])
+def test_a_terse_command_with_now_after_it(text: str, steps: tuple[str, ...]) -> None:
+    """Found while writing a dev case: "Please the projector off now." was talk, "The projector
+    off, please." a request."""
+    assert read_request(text).steps == steps
