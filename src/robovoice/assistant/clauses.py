@@ -32,18 +32,19 @@ _DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:(?:that|this|it)(?:
                         r"(?: with (?:that|this|it|them|her|him)| there| here| in there)?)"
                         # (said alone before a comma: "…, and when that's done, make your way …", text test v63)
                         r"(?:\s+(?!(?:with|that|this|it|them|there|here|in)\b)|$)", re.IGNORECASE)
+# the robot named when the speaker passes a request on: "tell it to …", "ask the machine not to …"
+_TELL_IT = r"(?:tell|ask) (?:it|the robot|the machine|jarvis)"
 # "Mrs Pritchard asked me to get you to call Clara": a request passed on through the speaker, the
 # robot's to do now (text test v58); its words are the request's own
 _RELAYED = re.compile(r"^(?:(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|when|once)\b)(?:\w+\.? )?\w+ "
                       r"(?:asked|told|wants|wanted|would like|'d like) me to "
                       r"(?:(?:get|ask|tell) you to|have you)"
                       # … or by someone else in the room: "tell it to go to the bedroom" (text test v61)
-                      r"|(?:(?:please|kindly|just|go on) )?(?:tell|ask) (?:it|the robot|the machine|jarvis) to)"
+                      rf"|(?:(?:please|kindly|just|go on) )?{_TELL_IT} to)"
                       r"\s+(?=\w)",
                       re.IGNORECASE)
 # "tell the machine not to go in the kitchen": the same, not wanted (text test v68)
-_RELAYED_NOT = re.compile(r"^(?:(?:please|kindly|just) )?(?:tell|ask) (?:it|the robot|the machine|jarvis) "
-                          r"not to\s+(?=\w)", re.IGNORECASE)
+_RELAYED_NOT = re.compile(rf"^(?:(?:please|kindly|just) )?{_TELL_IT} not to\s+(?=\w)", re.IGNORECASE)
 # "call her and, uh, then …": a conjunction left at the end by the comma after it (not at the
 # very end: "Hey Jarvis, go and" was cut off)
 _TRAILING = re.compile(r"\s+(?:and then|and)$", re.IGNORECASE)
@@ -90,7 +91,7 @@ _CALL_COMMA = re.compile(r"(?<!\bthe )(?<!\ba )(?<!\bvideo )\b((?i:call|ring|pho
 _ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+(?=(?:can|could|would|will) you \w"
                              r"|(?<!^before you )(?<!^after you )(?<!^once you )"
                              r"(?:switch|turn|put|call|ring|phone|give|go|head|come|drive) "
-                             r"(?:on|off|the|to|into|a|an|my|your|her|him|them|[A-Z]\w+)\b)", re.IGNORECASE)
+                             r"[a-z]\w*\b)", re.IGNORECASE)  # and any word after it
 
 
 # "once it's up and running, ring Anna": one state, no "and" between two clauses (text test v64)

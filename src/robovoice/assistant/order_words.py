@@ -13,16 +13,16 @@ HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
 BACK_ONLY = re.compile(r"^\s*(?:with )?(?:him|her|them|it|that|this|through)?\W*$", re.IGNORECASE)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
 ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:the |my |your )?"
-                               r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
+                              r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
 # not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41)
 AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
-                    r"|followed by)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
+                   r"|followed by)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
 THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
-BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
+_BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now| so)?$", re.IGNORECASE)  # "go on so" (v59)
 PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
 AFTER_YOU = re.compile(r"^(?:after|once|as soon as) you (?!(?:'|are|get|go there|arrive)\b)(\w+ \w.*)$", re.IGNORECASE)
@@ -31,8 +31,8 @@ FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # a time said before, held to (audio test v42: "after his lunch you can …, but not before")
 # and a time that is not now, said after the request (text test v63: "…, but not at the moment, thank you")
 NOT_BEFORE = re.compile(r"^(?:but |though )?(?:not (?:before|until then|till then|(?:just )?yet|(?:just |right )?now"
-                         r"|at the moment|at present|this minute|today|tonight)|no sooner)"
-                         r"(?:,? (?:though|thanks|thank you|please|mind))*[\s.!]*$", re.IGNORECASE)
+                        r"|at the moment|at present|this minute|today|tonight)|no sooner)"
+                        r"(?:,? (?:though|thanks|thank you|please|mind))*[\s.!]*$", re.IGNORECASE)
 # "before calling Anna, …" (audio test v59): the same as "before you call Anna"
 _BEFORE_DOING = re.compile(r"^before (\w+)ing\b(.*)$", re.IGNORECASE)
 
@@ -40,7 +40,7 @@ _BEFORE_DOING = re.compile(r"^before (\w+)ing\b(.*)$", re.IGNORECASE)
 def before_you(bare: str) -> str | None:
     """The request said after "before you" or "before <verb>ing" ("call Anna" for "before calling
     Anna"), or None."""
-    if you := BEFORE_YOU.match(bare):
+    if you := _BEFORE_YOU.match(bare):
         return you.group(1)
     # (with the thing it is done to, and nobody else doing it: "before going to bed I read")
     if (doing := _BEFORE_DOING.match(bare)) is None or not doing.group(2).strip() \
