@@ -630,7 +630,7 @@ def test_a_hedge_or_an_uh_is_no_step(text: str) -> None:
     ("Living room, please, love.", ("Living room",)),  # a bare place with a "please" after the comma
     ("Could we have the projector going? It's too dark for the slides.", ("Could we have the projector going",)),
     ("can u ring ben pls", ("can you ring ben please",)),  # texting shorthand
-    ("pls go bathroom then charge urself", ("please go bathroom", "charge yourself")),
+    ("pls go bathroom then charge urself", ("please go to the bathroom", "charge yourself")),
     ("Please to call my daughter Anna, she waits.", ("please call my daughter Anna",)),  # "she waits": no step
     ("Go to the kitchen and then, um, after that, switch the projector on.", ("Go to the kitchen",
                                                                             "switch the projector on")),
@@ -1212,7 +1212,7 @@ def test_names_in_a_row_with_no_verb_are_a_list_not_calls() -> None:
     ("Ring Clara. No, I beg your pardon, I mean Anna.", ("I mean Anna",)),
     ("Off the projector and go to the bedroom.", ("Off the projector", "go to the bedroom")),
     ("Go living room, then on the projector for the children.",
-     ("Go living room", "on the projector for the children")),
+     ("Go to the living room", "on the projector for the children")),
     ("I'd like to know if you're able to go and charge without being reminded.", ()),  # what it can do
     ("I'd like to know where you are.", ("I'd like to know where you are",)),  # a look-up asked for
 ])
@@ -1294,4 +1294,33 @@ def test_an_order_words_clause_run_into_the_command_without_a_comma(text: str, s
 def test_a_terse_command_with_now_after_it(text: str, steps: tuple[str, ...]) -> None:
     """Found while writing a dev case: "Please the projector off now." was talk, "The projector
     off, please." a request."""
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Okay, hang up and then, um, I guess head back to the dock.", ("hang up", "I guess head back to the dock")),
+    ("I suppose switch the projector off, then.", ("I suppose switch the projector off",)),
+    ("Maybe go to the kitchen.", ("Maybe go to the kitchen",)),
+    ("I guess so.", ()),
+    ("I think Ben will call later.", ()),
+    ("If it's not a huge deal, could you head over to the front door?", ("could you head over to the front door",)),
+    ("If it's no big deal, could you go to the kitchen?", ("could you go to the kitchen",)),
+    ("Oy vey, the bedroom, please.", ("the bedroom",)),
+])
+def test_a_hedged_command_and_a_courtesy_condition(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v69: "…, um, I guess head back to the dock and charge?" lost the drive, and
+    "if it's not a huge deal, could you maybe head over to the front door?" was read as a
+    question about ability, so nothing ran."""
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Okay, I think we can end the call now.", ("I think we can end the call now",)),
+    ("I reckon we might as well hang up now.", ("I reckon we might as well hang up now",)),
+    ("We should call Anna more often.", ()),  # no "now": the person's own thought
+    ("We could have called Ben now.", ()),
+    ("We can call Ben tomorrow.", ()),
+])
+def test_we_can_do_it_now_asks(text: str, steps: tuple[str, ...]) -> None:
+    """Audio test v60: "okay, I think we can end the call now" was talk, and the call went on."""
     assert read_request(text).steps == steps

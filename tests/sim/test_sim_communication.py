@@ -24,6 +24,7 @@ CONTACTS = [{"name": "Anna", "relation": "daughter"}, {"name": "Ben", "relation"
         ("Dr. Weber", "Dr. Weber"), ("Dr Weber", "Dr. Weber"), ("Doctor Weber", "Dr. Weber"),
         ("weber", "Dr. Weber"), ("the doctor", "Dr. Weber"), ("dr. weber", "Dr. Weber"),
         ("Anna beta", "Anna"), ("Ben ji", "Ben"), ("Clara dear", "Clara"),  # a word of endearment or respect after
+        ("Sir Ben", "Ben"), ("Ma'am Anna", "Anna"), ("Auntie Clara", "Clara"),  # a title before (audio test v61)
     ],
 )
 def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
@@ -32,7 +33,8 @@ def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
     assert contact.name == name
 
 
-@pytest.mark.parametrize("text", ["Bob", "Annabel", "Dr. Miller", "dr", "", "mum", "Weber Anna", "beta", "Bob ji"])
+@pytest.mark.parametrize("text", ["Bob", "Annabel", "Dr. Miller", "dr", "", "mum", "Weber Anna", "beta", "Bob ji",
+                                  "Sir Bob", "sir"])
 def test_unknown_contacts_are_not_guessed(text: str) -> None:
     assert find_contact(text) is None
 

@@ -51,6 +51,10 @@ _POLITE = re.compile(
     # you'd better ring Clara"; not "you should have seen it", "you must be tired")
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
     r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
+    r"^(?:(?:i think|maybe|perhaps|probably) )?(?:better|best) you (?!than\b)\w+|"  # Singlish advice (text test v70)
+    # "I think we can end the call now" (audio test v60; not "we should call Ben more often")
+    r"^(?:(?:i think|i guess|i reckon|maybe) )?we (?:can|could|may as well|might as well) (?!have\b|be\b|not\b)\w+"
+    r"\b.*\bnow$|"
     r"^i(?:'d| would| should) (?:(?:very much|really|so much) )?like (?:you|to|the|my|a|an|some|it)\b"
     r"|^i(?:'d| would) (?:really )?love\b|"  # "I'd very much like to speak to my nephew Ben" (text test v63)
     r"^i(?:'d| would)? (?:kindly )?request you to\b|"  # "I would request you to move to …" (text test v68)
@@ -168,6 +172,7 @@ _TELLS = frozenset({"i", "we", "he", "she", "they", "my", "our"})
 _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "long", "come", "so", "about"})
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
+_HEDGE = re.compile(r"^(?:i guess|i suppose|i think|maybe|perhaps),?\s+")
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
 # "I was gonna tell you to stop, but …": a stop nearly said is no stop (text test v57)
 _WAS_GOING_TO = re.compile(r"\b(?:was|were) (?:going to|about to|meaning to|gonna) (?:tell|ask|say)\b"
@@ -185,7 +190,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)"
                                                # "I don't want you to stop" (text test v59)
-                                               r"(?: (?:want|need|mean|ask|tell)\w* (?:you )?to)?|(?!you\b)\w+ "
+                                               r"(?: (?:want|need|mean|ask|tell|have|has)\w* (?:you )?to)?"
+                                               r"|(?!you\b)\w+ "
                                                r"(?:can'?t|cannot|couldn'?t|won'?t)) (?:stop|\w+ still)\b", lowered) \
             and not _WAS_GOING_TO.search(lowered):
         return ClauseKind.REQUEST  # a stop is always a request
@@ -208,6 +214,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
+    if (hedged := words(_HEDGE.sub("", lowered))) and hedged[0] in IMPERATIVES and len(hedged) < len(said):
+        return ClauseKind.REQUEST  # "I guess head back to the dock": a command said unsurely (text test v69)
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))
                                 and not _TOLD_OF.search(lowered[shape.end():])):
         return ClauseKind.REQUEST

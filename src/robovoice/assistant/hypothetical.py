@@ -13,7 +13,8 @@ _ABILITY = re.compile(
     r"would you be able|you (?:would|could|might) be (?:able|capable)|(?:do|would|did) you know how|can robots|"
     r"something you can|the kind of robot|"
     r"how (?:fast|far|well|long) can you|if i (?:asked|needed|wanted)|"
-    r"by yourself|on your own|your own way|ever(?! so\b))\b"
+    r"by yourself|on your own|your own way|ever(?! so\b)|"
+    r"(?:would|will|can|could|do) you (?:even |actually )?fit)\b"  # "would you fit to go inside there?" (text test v70)
     # surprise or doubt at what it can do: "wait, can you actually project stuff on the wall?"
     r"|^can you (?:actually|really|even|honestly|seriously)\b(?!.*\b(?:please|now|just|for me)\b)"
     # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
@@ -99,7 +100,9 @@ COURTESY = re.compile(
     r"you(?:'re| are) (?:settled|in position|all set)\b|"
     r"you(?:'d| would) be (?:so |ever so )?(?:kind|good|sweet|a (?:love|dear|darling|star))\b|"
     rf"you(?:'ve| have| get| got)?(?: got)? {_A_MOMENT}|"
-    r"it'?s (?:no|not too much) (?:trouble|bother)|(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
+    # "if it's not a huge deal, could you …" (text test v69)
+    r"it'?s (?:no|not(?: a| too)?)(?: much| huge| big| great)? (?:trouble|bother|deal|problem|hassle)|"
+    r"(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
     re.IGNORECASE)
 # … and this is the order of steps, not a condition ("go to the door and when you get there, …").
 ON_ARRIVAL = re.compile(r"^(?:when|once) you(?:'re| are)? (?:(?:get|arrive)\w*(?: (?:there|in there|back|in|home))?"

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.code_switch import in_english
+
 
 def words(text: str) -> list[str]:
     """The words of `text`, lower-cased, apostrophes kept ("what's", "son's")."""
@@ -21,6 +23,8 @@ FILLER = re.compile(
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|ah|ahh|aah|aw|k|like|what am i saying|what was i thinking|silly me|y'all|yo|"
     r"bro|bruh|dude|yaar|arre|arey|accha|achha|acha|"  # young people's and Hinglish openers (text test v68)
+    r"ay|oy vey|oy|oye|nu|"  # Spanish and Yiddish ones (text test v69)
+    r"aiyah|aiya|aiyoh|aiyo|alamak|walao|wah|"  # Singlish ones (text test v70)
     r"(?:i'?ll )?tell you what|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
@@ -40,7 +44,8 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
              rf"sweetheart|lovey|{_HASTE}|"
              # thanks, and what the robot is called in passing ("Away through to the living room, son, …":
              # not a call to the person's son, text test v37; "my son" is someone)
-             r"ta|cheers|ta very much|son|lad|lass|sunshine|buddy|chief|kiddo|young man|my lad|my boy|my girl)$",
+             r"ta|cheers|ta very much|son|lad|lass|sunshine|buddy|chief|kiddo|young man|my lad|my boy|my girl|"
+             r"(?:muchas )?gracias|mija|mijo|mi amor|shukriya|dhanyavaad)$",  # (text test v69)
              re.IGNORECASE)
 
 # Putting a request off.
@@ -149,7 +154,7 @@ NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|ther
 WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|belay that|"
                         r"forget (?:it|that|(?:that )?i (?:said|asked)(?: that| it)?|what i (?:said|asked))|"
                         r"never ?mind|cancel that|on second thoughts?|no,? wait|wait,? no|"
-                        r"leave (?:it|that))"
+                        r"leave (?:it|that)|no need(?: (?:already|anymore|any more|now|then))?)"  # (text test v70)
                         r"\b[\s,]*)+$",
                         re.IGNORECASE)
 # "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
@@ -250,7 +255,7 @@ _TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz
            "n": "and", "rn": "right now", "bot": "robot", "ngl": "honestly", "tbh": "honestly", "imo": "honestly",
            "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really", "nah": "no", "naw": "no",
            "wanna": "want to", "gonna": "going to", "gotta": "got to",  # "after that I wanna call Ben" (text v56)
-           "ty": "thank you", "vid": "video"}  # "vid call Ben", "… rung Ben. ty" (text v60, v59)
+           "ty": "thank you", "vid": "video", "nvm": "never mind"}  # "vid call Ben", "… rung Ben. ty" (text v60, v59)
 # "once ur in the kitchen": you're, before where or how it is (text test v60); else "your"
 _UR_ARE = re.compile(r"\bur(?= (?:in|at|on|by|there|here|back|done|finished|going|not|so|a|an|the|nearly|almost"
                      r"|\w+ing)\b)", re.IGNORECASE)
@@ -270,6 +275,7 @@ _QUOTE = re.compile(r"(?<!\w)['\u2018\u2019\"\u201c\u201d]+|['\u2018\u2019\"\u20
 def plain(text: str) -> str:
     """`text` with texting shorthand spelled out, stretched letters said once and a checklist's
     numbers said as order words ("first", "then")."""
+    text = in_english(text)  # "prende el projector", "projector band karo" (text tests v69, v68)
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _UR_ARE.sub("you're", _STRETCHED.sub(r"\1", text)))
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
     text = _QUOTE.sub("", text)  # "Step four: 'send the robot to the dock'": the words read out
@@ -278,17 +284,15 @@ def plain(text: str) -> str:
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
     text = _SO_KIND_AS_TO.sub("please", text)  # a courtesy, not a condition
     text = _NO_TAG.sub(".", text)  # "tell it to go to the bedroom, no?": a tag asking agreement (text test v61)
+    text = _WAIT_NO.sub(" ", text)  # "Call Dr. Weber... wait, no need": taken back, no stop (text test v70)
     text = _NEXT_DOOR.sub("nextdoor", text)  # "Clara next door": the neighbour's, no door of the home (text test v58)
-    text = _HINDI_OFF.sub("off", _HINDI_ON.sub("on", text))  # "Projector band karo": "projector off" (text test v68)
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 
 _NO_TAG = re.compile(r"(?<=\w),\s*no\?", re.IGNORECASE)
+_WAIT_NO = re.compile(r"(?<=[.,!?;\u2026\u2014-]) *wait[,!.\u2026]*\s+"
+                      r"(?=(?:no|nah|actually|never mind|forget|scratch)\b)", re.IGNORECASE)
 _NEXT_DOOR = re.compile(r"\bnext door\b", re.IGNORECASE)
-# Hindi's "switch off" and "switch on", said after the thing in Indian English
-_HINDI_DO = r"\s+(?:karo|kar do|kar de|kardo|karde|kijiye|kar dijiye|kar dena)\b"
-_HINDI_OFF = re.compile(r"\b(?:band|bandh|bund)" + _HINDI_DO, re.IGNORECASE)
-_HINDI_ON = re.compile(r"\b(?:chalu|chaalu|on|start)" + _HINDI_DO, re.IGNORECASE)
 
 
 # a word said again after a hesitation or a search for the word ("Put the, um, the …", "switch on

@@ -1,0 +1,80 @@
+"""Words of another language said inside English speech, in English, before the reading.
+
+A home-help mixes in her Spanish ("prende el projector", "ve a la cocina primero"), an Indian
+family its Hindi ("projector band karo"). Only requests, order words and the names of rooms
+are put in English here, each written so it cannot be an English word: Spanish "llama a" (call),
+not the animal; "ve" not inside "I've"; "para" (stop, but also "for") not at all. Everything
+else is left as said: the model reads the person's own words, only the reading reads these.
+"""
+
+from __future__ import annotations
+
+import re
+
+# Hindi's "switch off" and "switch on", said after the thing in Indian English (text test v68)
+_HINDI_DO = r"\s+(?:karo|kar do|kar de|kardo|karde|kijiye|kar dijiye|kar dena)\b"
+_HINDI_OFF = re.compile(r"\b(?:band|bandh|bund)" + _HINDI_DO, re.IGNORECASE)
+_HINDI_ON = re.compile(r"\b(?:chalu|chaalu|on|start)" + _HINDI_DO, re.IGNORECASE)
+
+# Spanish requests, in the familiar and the polite form (text test v69)
+_GO = r"(?<!['\u2019])\b(?:ve|vete|vaya|váyase|vayase)"
+_BACK = r"\b(?:regresa|regrese|vuelve|vuelva)"
+_CALL = r"\b(?:llama|llame|llámale|llamale|llámele|llamele)"
+_ON = r"\b(?:prende|prenda|enciende|encienda)"
+_OFF = r"\b(?:apaga|apague)"
+_HANG_UP = r"\b(?:cuelga|cuelgue)"
+_ARTICLE = r"(?:\s+(?:el|la|los|las)\b)?"
+_VERB = "|".join((_GO, _BACK, _CALL, _ON, _OFF, _HANG_UP))
+
+# rooms (and the projector) said in Spanish: an article before them is said in English too
+_ROOMS = {"cocina": "kitchen", "baño": "bathroom", "bano": "bathroom", "cuarto": "bedroom",
+          "recámara": "bedroom", "recamara": "bedroom", "habitación": "bedroom", "habitacion": "bedroom",
+          "dormitorio": "bedroom", "sala": "living room", "pasillo": "hallway",
+          "puerta de entrada": "front door", "puerta": "front door", "proyector": "projector"}
+_ROOM = re.compile(r"\b(?:(?:el|la)\s+)?(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b",
+                   re.IGNORECASE)
+
+_SPANISH = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+    (r"\by\s+(?=(?:" + _VERB + r")\b)", "and "),  # "… y llama a Ben" (before the verb is in English)
+    (_GO + r"\s+al\b", "go to the"), (_GO + r"\s+a\b", "go to"),
+    (_BACK + r"\s+al\b", "go back to the"), (_BACK + r"\s+a\b", "go back to"),
+    (_CALL + r"\s+(?:a|al)\b(?=\s+\w)", "call"),  # "llama a Ben": the a is Spanish's, before a person
+    (_ON + r"\b" + _ARTICLE, "turn on the"), (_OFF + r"\b" + _ARTICLE, "turn off the"), (_HANG_UP + r"\b", "hang up"),
+    (r"\by\s+(?:después|despues|luego|entonces)\b", "and then"),
+    (r"\b(?:después|despues|luego)\s+al\b", "then to the"), (r"\b(?:después|despues|luego)\b", "then"),
+    (r"\bprimero\b", "first"), (r"\bpor favor\b", "please"),
+    (r"\bun momentito\b|\brapidito\b", "quickly"),  # "go to the bathroom un momentito": a moment's errand
+))
+
+
+# Singlish (text test v70): its particles say nothing asked ("Off the projector lah"); "X can or
+# not?" is "can you X?"; "see got water on the floor or not" is "see if there is …"; "go toilet"
+# is "go to the toilet"
+_PARTICLE = re.compile(r"\s*,?\s*\b(?:lah|leh|lor|hor|meh|sia)\b|(?<=\w) (?:ah|ha)(?=\s*(?:[,.!?\u2026]|$))",
+                       re.IGNORECASE)
+_CAN_OR_NOT = re.compile(r"(^|[.!?\u2026,]\s*)(?:you )?([^.!?\u2026,]+?),?\s+can (?:or )?(?:not|anot)\b",
+                         re.IGNORECASE)
+_GOT_OR_NOT = re.compile(r"\bgot ([^,.!?\u2026]+?) or not\b", re.IGNORECASE)
+_GO_ROOM = re.compile(r"\b(go|come) (toilet|kitchen|bedroom|bathroom|hallway|living room)\b", re.IGNORECASE)
+
+
+def in_english(text: str) -> str:
+    """`text` with the requests, order words and rooms said in Hindi or Spanish put in English,
+    and Singlish's particles and turns said as English says them."""
+    text = _HINDI_OFF.sub("off", _HINDI_ON.sub("on", text))  # "Projector band karo": "projector off"
+    text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
+    text = _CAN_OR_NOT.sub(r"\1can you \2", text)
+    spanish = bool(_ANY_SPANISH.search(text))
+    for pattern, english in _SPANISH:
+        text = pattern.sub(english, text)
+    if not spanish:
+        return text
+    text = _YA.sub("now", text)  # "ya terminamos": Spanish's "now", not texting's "you"
+    return _ROOM.sub(lambda m: _ROOMS[m.group(1).lower()] if text[:m.start()].lower().endswith("the ")
+                     else "the " + _ROOMS[m.group(1).lower()], text)
+
+
+_YA = re.compile(r"\bya\b", re.IGNORECASE)
+# the rooms are put in English only where a Spanish request or order word was said: "sala" and
+# "puerta" alone are not taken from an English sentence
+_ANY_SPANISH = re.compile("|".join([_VERB, r"\b(?:después|despues|luego|primero|por favor)\b"]), re.IGNORECASE)

@@ -1,0 +1,72 @@
+"""Requests said partly in Spanish or Hindi inside English speech (assistant/code_switch.py)."""
+
+from __future__ import annotations
+
+import pytest
+
+from robovoice.assistant.code_switch import in_english
+from robovoice.assistant.intent import read_request
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("prende el projector", "turn on the projector"),
+    ("Apaga el proyector, por favor.", "turn off the projector, please."),
+    ("Ve a la cocina primero, después al hallway.", "go to the kitchen first, then to the hallway."),
+    ("Ve al cuarto", "go to the bedroom"),  # one "the", not two
+    ("Regresa a la sala y luego llama a Anna.", "go back to the living room and then call Anna."),
+    ("Turn on the projector y llama a Ben", "Turn on the projector and call Ben"),
+    ("Projector band karo", "Projector off"),
+    # English words that look like the Spanish ones stay as they are
+    ("I've got a llama at the farm", "I've got a llama at the farm"),
+    ("The sala is my favourite room", "The sala is my favourite room"),  # no Spanish request said
+    ("Call Al and then go to the kitchen", "Call Al and then go to the kitchen"),
+    ("No apagues el projector", "No apagues el projector"),  # a Spanish "don't": not made a request
+])
+def test_spanish_and_hindi_requests_are_put_in_english(said: str, english: str) -> None:
+    assert in_english(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Turn on the projector y después llama a Ben, he wants to see.", ("Turn on the projector", "call Ben")),
+    ("Go to the bedroom, prende el projector, and then call Ben.",
+     ("Go to the bedroom", "turn on the projector", "call Ben")),
+    ("Primero ve al baño, después enciende el projector.", ("first go to the bathroom", "turn on the projector")),
+    ("Ay, robot, go to the bathroom un momentito, my glasses are in there.", ("go to the bathroom quickly",)),
+    ("No llames a Ben todavía.", ()),  # "don't call Ben yet"
+    ("No apagues el projector, mija.", ()),
+])
+def test_a_request_said_partly_in_spanish_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v69: a home-help's "Ve a la cocina primero, después al hallway", "… y después
+    llama a Ben", "prende el projector" were talk, and those steps were never done."""
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Off the projector lah, nobody watching.", "Off the projector, nobody watching."),
+    ("call the doctor for me can or not?", "can you call the doctor for me?"),
+    ("Aiyah... you ring Ben, can anot?", "Aiyah... can you ring Ben?"),
+    ("Go toilet see got water on the floor or not", "Go to the toilet see if there is water on the floor"),
+    ("Call Ben ah, quickly", "Call Ben, quickly"),
+    ("I had a cat", "I had a cat"),  # "ha" and "ah" are particles only at a pause
+])
+def test_singlish_particles_and_turns_are_said_as_english_says_them(said: str, english: str) -> None:
+    assert in_english(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Off the projector lah.", ("Off the projector",)),
+    ("Aiyah, my back again... call the doctor for me can or not?", ("can you call the doctor for me",)),
+    ("You go upstairs can or not?", ()),  # asks what it can do
+    ("Maybe better you go and charge, okay?", ("Maybe better you go charge",)),
+    ("Better you than me.", ()),
+    ("Sorry ha, the hallway quite small, would you fit in there?", ()),  # asks what it can do
+    ("Call Ben ah... wait, no need lah, he's busy.", ()),  # taken back
+    ("go to the kitchen— actually nvm, I'll go", ()),
+    ("It's okay, you don't have to stop, just carry on.", ()),
+    ("Go to the kitchen, wait, no, the bedroom", ("the bedroom",)),
+])
+def test_a_request_said_in_singlish_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v70: "Off the projector lah, …" and "call the doctor for me can or not?" were
+    not requests; "Call Dr. Weber ah... wait, no need lah" called and stopped; "would you fit
+    to go inside there?" drove; "you don't have to stop" stopped the drive."""
+    assert read_request(text).steps == steps
