@@ -60,6 +60,7 @@ def test_singlish_particles_and_turns_are_said_as_english_says_them(said: str, e
     ("Maybe better you go and charge, okay?", ("Maybe better you go charge",)),
     ("Better you than me.", ()),
     ("Sorry ha, the hallway quite small, would you fit in there?", ()),  # asks what it can do
+    ("Can you fit through the front door, do you reckon?", ()),  # the tag after it asks nothing more
     ("Call Ben ah... wait, no need lah, he's busy.", ()),  # taken back
     ("go to the kitchen— actually nvm, I'll go", ()),
     ("It's okay, you don't have to stop, just carry on.", ()),

@@ -113,8 +113,9 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             noted = noted or bool(_NOTE_FOR.match(bare))
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
-        if (_OPINION.match(bare) or _OR_ONLY.match(bare)) and clauses and clauses[-1].kind is ClauseKind.REQUEST and \
-                asked_as_question(clauses[-1].text):
+        if (_OPINION.match(bare) or _OR_ONLY.match(bare)) and clauses and (
+                clauses[-1].kind is ClauseKind.ABILITY
+                or (clauses[-1].kind is ClauseKind.REQUEST and asked_as_question(clauses[-1].text))):
             # "can you fit through the front door, do you reckon?": whether it could, not a request
             clauses[-1] = Clause(clauses[-1].text, ClauseKind.ABILITY)
             clauses.append(Clause(part, ClauseKind.STATEMENT))
