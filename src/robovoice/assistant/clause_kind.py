@@ -172,7 +172,8 @@ _TELLS = frozenset({"i", "we", "he", "she", "they", "my", "our"})
 _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "long", "come", "so", "about"})
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
-_HEDGE = re.compile(r"^(?:i guess|i suppose|i think|maybe|perhaps),?\s+")
+# an unsure opening before a command (not `lexicon._HEDGE`, a hedge said alone after a request)
+_UNSURE = re.compile(r"^(?:i guess|i suppose|i think|maybe|perhaps),?\s+")
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
 # "I was gonna tell you to stop, but …": a stop nearly said is no stop (text test v57)
 _WAS_GOING_TO = re.compile(r"\b(?:was|were) (?:going to|about to|meaning to|gonna) (?:tell|ask|say)\b"
@@ -214,7 +215,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
     if first in _HOLD and not _PLACE.search(lowered):
         return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
-    if (hedged := words(_HEDGE.sub("", lowered))) and hedged[0] in IMPERATIVES and len(hedged) < len(said):
+    if (hedged := words(_UNSURE.sub("", lowered))) and hedged[0] in IMPERATIVES and len(hedged) < len(said):
         return ClauseKind.REQUEST  # "I guess head back to the dock": a command said unsurely (text test v69)
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))
                                 and not _TOLD_OF.search(lowered[shape.end():])):

@@ -31,8 +31,12 @@ _ROOMS = {"cocina": "kitchen", "baño": "bathroom", "bano": "bathroom", "cuarto"
           "recámara": "bedroom", "recamara": "bedroom", "habitación": "bedroom", "habitacion": "bedroom",
           "dormitorio": "bedroom", "sala": "living room", "pasillo": "hallway",
           "puerta de entrada": "front door", "puerta": "front door", "proyector": "projector"}
-_ROOM = re.compile(r"\b(?:(?:el|la)\s+)?(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b",
-                   re.IGNORECASE)
+_ROOM = re.compile(r"\b(?:(the\s+)|(?:el|la)\s+)?(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b",
+                   re.IGNORECASE)  # an English "the" before it is kept as said ("al" has made one)
+# the rooms are put in English only where a Spanish request or order word was said: "sala" and
+# "puerta" alone are not taken from an English sentence
+_ANY_SPANISH = re.compile("|".join([_VERB, r"\b(?:después|despues|luego|primero|por favor)\b"]), re.IGNORECASE)
+_YA = re.compile(r"\bya\b", re.IGNORECASE)
 
 _SPANISH = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
     (r"\by\s+(?=(?:" + _VERB + r")\b)", "and "),  # "… y llama a Ben" (before the verb is in English)
@@ -70,11 +74,4 @@ def in_english(text: str) -> str:
     if not spanish:
         return text
     text = _YA.sub("now", text)  # "ya terminamos": Spanish's "now", not texting's "you"
-    return _ROOM.sub(lambda m: _ROOMS[m.group(1).lower()] if text[:m.start()].lower().endswith("the ")
-                     else "the " + _ROOMS[m.group(1).lower()], text)
-
-
-_YA = re.compile(r"\bya\b", re.IGNORECASE)
-# the rooms are put in English only where a Spanish request or order word was said: "sala" and
-# "puerta" alone are not taken from an English sentence
-_ANY_SPANISH = re.compile("|".join([_VERB, r"\b(?:después|despues|luego|primero|por favor)\b"]), re.IGNORECASE)
+    return _ROOM.sub(lambda m: (m.group(1) or "the ") + _ROOMS[m.group(2).lower()], text)
