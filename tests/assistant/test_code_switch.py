@@ -71,3 +71,50 @@ def test_a_request_said_in_singlish_is_read(text: str, steps: tuple[str, ...]) -
     not requests; "Call Dr. Weber ah... wait, no need lah" called and stopped; "would you fit
     to go inside there?" drove; "you don't have to stop" stopped the drive."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Y'all might could call Ben after lunch", "could you call Ben after lunch"),
+    ("Okay, might could you roll on to the kitchen?", "Okay, could you roll on to the kitchen?"),
+    ("I might could go to the kitchen myself", "I might could go to the kitchen myself"),  # the speaker's plan
+    ("quit rollin' and stop actin' up", "quit rolling and stop acting up"),
+])
+def test_southern_us_turns_are_said_as_english_says_them(said: str, english: str) -> None:
+    assert in_english(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("You might could put the projector on for me, hon.", ("could you put the projector on for me",)),  # "hon": a tag
+    ("Holler at Clara for me, would you?", ("Holler at Clara for me",)),
+    ("She's all done. Go ahead and hang up the call.", ("hang up the call",)),  # no "go ahead" step
+    ("I might could holler at Ben tomorrow.", ()),
+])
+def test_a_southern_us_request_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v71: "Y'all might could call Doctor Weber after …" and "Holler at Dr. Weber …"
+    were talk; "Go ahead and hang up now" made a "Go ahead" step the model took as a drive."""
+    assert read_request(text).worded_steps == steps
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Go a di kitchen, den back a yuh charger.", "Go to the kitchen, then back to your charger."),
+    ("Hol' on, nuh go deh, tun roun'.", "hold on, don't go there, turn round."),
+    ("Mek we call Anna nuh.", "let's call Anna."),
+    ("Put the books in the den, then the kitchen", "Put the books in the den, then the kitchen"),  # a room
+    ("Leonardo Di Caprio", "Leonardo Di Caprio"),  # "Di" with a capital may be a name
+    ("Open the projector la", "turn on the projector"),
+    ("Add oil ar robot! Close projector.", " robot! turn off the projector."),
+])
+def test_patois_and_hong_kong_turns_are_said_as_english_says_them(said: str, english: str) -> None:
+    assert in_english(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("First go a di kitchen, den call Anna fi mi.", ("First go to the kitchen", "call Anna for me")),
+    ("Nuh call Clara yet, she a sleep.", ()),
+    ("Living room, open projector, then ring Anna.", ("Living room", "turn on the projector", "ring Anna")),
+    ("Ben, switch the projector on, then go to the kitchen.", ("switch the projector on", "go to the kitchen")),
+])
+def test_a_patois_or_hong_kong_request_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v72: "go a di kitchen, den call Anna" did only the drive, "mek we call Anna nuh"
+    was talk, and "Living room, open projector, then …" lost the drive ("Ben, …" is said to Ben)."""
+    assert read_request(text).worded_steps == steps

@@ -194,7 +194,10 @@ def test_the_gate_asks_rather_than_calls_someone_nobody_named() -> None:
     assert there is not None and own_words(there) == ("Which one do you mean: kitchen, living room, bedroom, "
                                                       "bathroom, hallway, front door or charging dock?")
     negated = refusal(read_request("Don't call Anna."), spec, {"contact": "Anna"}, (), VOICE)
-    assert negated is not None and own_words(negated) is None  # nothing to choose: it was declined
+    # nothing to choose: it was declined, and nothing else was said, so the robot's own line answers
+    assert negated is not None and own_words(negated) == "All right, I won't."
+    beside = refusal(read_request("Don't call Anna, call Ben."), spec, {"contact": "Anna"}, (), VOICE)
+    assert beside is not None and own_words(beside) is None  # a request beside it: the model goes on
 
 
 def test_an_ability_question_about_the_very_call_is_answered_yes_by_the_robot() -> None:

@@ -21,6 +21,8 @@ def made(result: TurnResult) -> list[tuple[str, str | None]]:
 
 
 async def test_a_negated_request_never_reaches_the_robot() -> None:
+    """Nothing else was asked: the robot's own line answers at once, with no second model step
+    (on the embedded model that step took 5-7 s and was mostly given the same line)."""
     async with scripted_sim(
         [call("navigate_to", target="bathroom"), TextReply("All right, I'll stay here.")]
     ) as (robot, server, backend):
@@ -28,10 +30,20 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
         assert robot.sim is not None
         assert not robot.sim.state.moving and robot.sim.state.nearest_place != "bathroom"
     assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
-    assert result.reply == "All right, I'll stay here."
-    # the model was told why, with a hint it can follow
-    tool_message = server.requests[1].messages[-1]
-    assert tool_message["role"] == "tool" and "not to do this now" in tool_message["content"]
+    assert result.reply == "All right, I won't." and len(server.requests) == 1
+    assert "not to do this now" in result.outcomes[0].text  # the refusal says why, for any later step
+
+
+async def test_a_refusal_beside_talk_is_worded_by_the_model() -> None:
+    """Talk that mentions a place gets the model's own words: it has more to say than "I see."."""
+    async with scripted_sim(
+        [call("navigate_to", target="bathroom"), TextReply("I hope she has a lovely day.")]
+    ) as (robot, server, backend):
+        result = await Assistant(backend, robot.tools).turn("My daughter rang from her bathroom this morning.")
+    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
+    assert result.reply == "I hope she has a lovely day."
+    tool_message = server.requests[1].messages[-1]  # the model was told why, with a hint it can follow
+    assert tool_message["role"] == "tool" and "telling you something" in tool_message["content"]
 
 
 async def test_without_the_checks_the_same_call_reaches_the_robot() -> None:
@@ -139,7 +151,7 @@ async def test_a_stop_is_refused_only_where_the_robot_stands_still() -> None:
     robot moves. Where its pose snapshot says it stands still, a stop the words never asked for
     ("Wait, don't call anyone.") is refused: it would do nothing the person asked."""
     async with scripted_sim(
-        [call("stop_robot"), call("stop_robot"), TextReply("All right.")]  # the first is said by its phrase
+        [call("stop_robot"), call("stop_robot")]  # the first is said by its phrase, the second by the refusal's
     ) as (robot, _server, backend):
         assert robot.sim is not None
         await robot.sim.apply_setup("driving")
@@ -156,8 +168,7 @@ async def test_never_mind_cancels_a_drive_under_way_and_nothing_when_none_is() -
     "cancel") still runs; with the robot standing still it is refused, and so is any other
     action the model reads into it (a small model switched the projector off)."""
     async with scripted_sim(
-        [call("cancel_navigation"), call("cancel_navigation"), TextReply("All right."),
-         call("set_projector_power", on=False), TextReply("All right.")]
+        [call("cancel_navigation"), call("cancel_navigation"), call("set_projector_power", on=False)]
     ) as (robot, _server, backend):
         assert robot.sim is not None
         await robot.sim.apply_setup("driving+projector_on")
@@ -175,7 +186,7 @@ async def test_keep_going_dont_stop_during_a_drive_stops_nothing() -> None:
     """The words say to carry on: the stop and cancel tools stay refused while the robot moves
     (test v8: "Keep going, keep going, don't stop - I was only talking to the cat." cancelled)."""
     async with scripted_sim(
-        [call("cancel_navigation"), TextReply("All right."), call("stop_robot"), TextReply("All right.")]
+        [call("cancel_navigation"), call("stop_robot")]  # each refusal answered by "All right, I won't."
     ) as (robot, _server, backend):
         assert robot.sim is not None
         await robot.sim.apply_setup("driving")

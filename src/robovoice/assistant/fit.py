@@ -37,7 +37,7 @@ _POINTS_ON = frozenset({"thing", "things", "stuff", "one", "on", "off", "up", "d
 _BARE_SWITCH = frozenset({"on", "off", "please", "now", "then", "again", "thanks"})
 
 
-def _refers_back(text: str) -> bool:
+def refers_back(text: str) -> bool:
     said = words(text)
     if said and set(said) <= _BARE_SWITCH and set(said) & {"on", "off"}:
         return True
@@ -115,7 +115,7 @@ def _request_stems(intent: Intent, said: Collection[str], kinds: Collection[Clau
     clauses = [_stems(_COURTESY.sub("", FILLER.sub("", c.text.strip()))) for c in requests]  # "ok wrap up …"
     # (an ability question's "it" is not looked up: "If Ben rings, could you answer it?" is
     # not a question about ringing him, and the robot's "yes" must be to what it names)
-    if pooled and ClauseKind.REQUEST in kinds and any(_refers_back(c.text) for c in requests):
+    if pooled and ClauseKind.REQUEST in kinds and any(refers_back(c.text) for c in requests):
         # "the thing that throws pictures on the wall... turn it off": what "it" is was said before
         clauses += [_stems(c.text) for c in intent.clauses]
     if intent.answering:

@@ -39,6 +39,7 @@ from robovoice.assistant.fit import (
     value_owner,
 )
 from robovoice.assistant.lexicon import RELATIONS, words
+from robovoice.assistant.polarity import wrong_way
 from robovoice.assistant.reading import ClauseKind, Intent
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.voice import VoiceDecl
@@ -50,6 +51,8 @@ NOT_REQUESTED = "not_requested"
 UNCLEAR = "unclear"  # a reference the conversation does not resolve: "go there", "call her"
 
 OTHER = "other_tool"  # a request stands, but not for this tool: "plug yourself in" and the projector
+
+WRONG_WAY = "wrong_way"  # a switch sent the other way round: "switch the projector off" with on: true
 
 CONFIRM = "confirm"  # held until the person says yes: the words may be misheard (assistant/confirm.py)
 
@@ -66,6 +69,7 @@ _HINTS = {
     UNCLEAR: "The user did not say which one they mean. Do not guess: ask them in one short question.",
     OTHER: "The user did not ask for this tool. Do only what they asked; if you are not sure what that is, "
            "ask them in one short question.",
+    WRONG_WAY: "The user asked for the opposite: call the same tool again with the other true/false value.",
     CONFIRM: "The user's words may have been misheard. Do not do it yet: ask them whether they want it.",
 }
 
@@ -81,6 +85,7 @@ _AFTER = {
     ClauseKind.UNFINISHED.value: "Sorry, I didn't catch all of that. Could you say it again?",
     UNCLEAR: "Which one do you mean?",
     OTHER: "Sorry, I'm not sure what you'd like me to do. Could you say it another way?",
+    WRONG_WAY: "Sorry, I got that the wrong way round. Could you say it again?",
     CONFIRM: "I'm not sure I heard you right. Shall I go ahead?",  # the tool's own question is said first
 }
 
@@ -227,6 +232,17 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
                 glossed, elsewhere, kinds, pooled=pooled)
 
 
+def _only_declined(intent: Intent, why: str | None) -> bool:
+    """A call refused as declined where every clause declines or is talk (no request, question or
+    ability question): the robot's own "All right, I won't." answers at once. The model, asked to
+    word it, took 5-7 s on the embedded model and was mostly given that line anyway (text test
+    v71: first sentence p50 8.6 s on negations, against 4.1 s on single requests). Talk that only
+    mentions someone still gets the model's words: "My husband used to sit in the kitchen" wants
+    more than "I see."."""
+    return why == ClauseKind.NEGATED.value and all(
+        c.kind in (ClauseKind.NEGATED, ClauseKind.STATEMENT) for c in intent.clauses)
+
+
 def refusal(
     intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
     voice: Mapping[str, VoiceDecl] | None = None, *, doubtful: bool = False, tools: Sequence[ToolSpec] = (),
@@ -271,10 +287,12 @@ def refusal(
             why = UNCLEAR  # "get car on a video call": Anna is nobody's guess to make
         elif doubtful and spec is not None and unlisted(spec.parameters, arguments):
             why = UNCLEAR  # "ring gunner", misheard: which one it knows, not a question about "Gunner"
+        elif spec is not None and wrong_way(intent, name, spec.parameters, arguments, declared.get(name, ())):
+            why = WRONG_WAY  # "turn the projector off" with on: true (the model's slip, text test v63)
         else:
             return None
-    answer = why == ClauseKind.ABILITY.value and spec is not None and _about_this(intent, spec, arguments, said,
-                                                                                  declared)
+    answer = _only_declined(intent, why) or (why == ClauseKind.ABILITY.value and spec is not None
+                                             and _about_this(intent, spec, arguments, said, declared))
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
     others = sorted({*fitting_tools(intent, declared, name), *([owner] if owner else [])}) if why == OTHER else []
     hint = _HINTS[why] + (f" What they asked for fits {' or '.join(others)}." if others else "")
@@ -287,5 +305,5 @@ def refusal(
         "hint": hint,
         "details": {"tool": name, "reason": why, **({"fits": others} if others else {}),
                     **({"choices": choices} if choices else {}),
-                    **({"answer": _AFTER[ClauseKind.ABILITY.value]} if answer else {})},
+                    **({"answer": _AFTER[str(why)]} if answer else {})},
     }

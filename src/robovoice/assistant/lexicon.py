@@ -45,7 +45,8 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
              # thanks, and what the robot is called in passing ("Away through to the living room, son, …":
              # not a call to the person's son, text test v37; "my son" is someone)
              r"ta|cheers|ta very much|son|lad|lass|sunshine|buddy|chief|kiddo|young man|my lad|my boy|my girl|"
-             r"(?:muchas )?gracias|mija|mijo|mi amor|shukriya|dhanyavaad)$",  # (text test v69)
+             r"(?:muchas )?gracias|mija|mijo|mi amor|shukriya|dhanyavaad|"  # (text test v69)
+             r"hon|honey|sugar|sweetie|bruv|bredda|chale)$",  # Southern US (text test v71)
              re.IGNORECASE)
 
 # Putting a request off.
@@ -71,6 +72,7 @@ IMPERATIVES = frozenset({
     "disconnect",  # "please disconnect this call now" (audio test v40)
     "cut",  # "cut the call now" (text test v68)
     "douse",  # "douse the projector" (text test v63)
+    "holler",  # Southern US: "holler at Dr. Weber for me" (text test v71)
 })
 # The word that asks the robot to stop: a spoken stop is always for it (intent, addressee)
 # "hold still" said to the robot, not of it ("do you have to stay still?", "the kids won't keep still")
@@ -283,6 +285,7 @@ def plain(text: str) -> str:
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
     text = _SO_KIND_AS_TO.sub("please", text)  # a courtesy, not a condition
+    text = _GO_AHEAD.sub("", text)  # "Go ahead and hang up now": no drive, one request (text test v71)
     text = _NO_TAG.sub(".", text)  # "tell it to go to the bedroom, no?": a tag asking agreement (text test v61)
     text = _WAIT_NO.sub(" ", text)  # "Call Dr. Weber... wait, no need": taken back, no stop (text test v70)
     text = _NEXT_DOOR.sub("nextdoor", text)  # "Clara next door": the neighbour's, no door of the home (text test v58)
@@ -290,6 +293,7 @@ def plain(text: str) -> str:
 
 
 _NO_TAG = re.compile(r"(?<=\w),\s*no\?", re.IGNORECASE)
+_GO_AHEAD = re.compile(r"\bgo ahead and (?=\w)", re.IGNORECASE)
 _WAIT_NO = re.compile(r"(?<=[.,!?;\u2026\u2014-]) *wait[,!.\u2026]*\s+"
                       r"(?=(?:no|nah|actually|never mind|forget|scratch)\b)", re.IGNORECASE)
 _NEXT_DOOR = re.compile(r"\bnext door\b", re.IGNORECASE)

@@ -1,0 +1,63 @@
+"""Which way a switch goes: a yes/no argument against the words of the request for it.
+
+The embedded model can get a switch the wrong way round (text test v63: "douse the projector"
+switched it on), and nothing else checks which way a switch goes. A tool
+whose yes/no argument the manifest describes with a pair of opposite words ("true to switch
+the projector on, false to switch it off") is checked against the request clauses that name
+the tool or point back at it ("turn it off"): when they say exactly one of the two words and
+the call sends the other value, the call is refused and the model is told to send the other.
+Words that say neither ("douse", "kill", "fire up") are left to the model, as before: a check
+that guesses would refuse right calls.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from robovoice.assistant.fit import refers_back, stem, vocabulary
+from robovoice.assistant.lexicon import words
+from robovoice.assistant.reading import ClauseKind, Intent
+
+# Opposite words a yes/no argument's description may pair: the first for true, the second for false.
+_OPPOSITES = (("on", "off"), ("open", "close"), ("up", "down"), ("start", "stop"), ("lock", "unlock"))
+_VALUE_PHRASE = re.compile(r"\b(true|false) to ([^,;.]+)", re.IGNORECASE)
+
+
+def _pair(description: str) -> tuple[str, str] | None:
+    """The words the description says true and false mean ("on", "off"), or None."""
+    phrases = {m.group(1).lower(): set(words(m.group(2))) for m in _VALUE_PHRASE.finditer(description)}
+    if "true" not in phrases or "false" not in phrases:
+        return None
+    for yes, no in _OPPOSITES:
+        for first, second in ((yes, no), (no, yes)):
+            if first in phrases["true"] and second in phrases["false"] and second not in phrases["true"]:
+                return first, second
+    return None
+
+
+def _names_tool(text: str, phrases: Sequence[Sequence[str]]) -> bool:
+    said = [stem(w) for w in words(text)]
+    return any(p and any(said[i:i + len(p)] == list(p) for i in range(len(said) - len(p) + 1)) for p in phrases)
+
+
+def wrong_way(intent: Intent, name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
+              declared: Sequence[str]) -> str | None:
+    """The word the request says ("off") when this call sends the opposite value, else None."""
+    properties = parameters.get("properties") or {}
+    vocab = vocabulary(name, declared, {})
+    asked = [c.text for c in intent.clauses if c.kind is ClauseKind.REQUEST
+             and (_names_tool(c.text, vocab) or refers_back(c.text))]
+    said = {w for text in asked for w in words(text)}
+    for arg, value in arguments.items():
+        schema = properties.get(arg)
+        if not isinstance(value, bool) or not isinstance(schema, Mapping) or schema.get("type") != "boolean":
+            continue
+        pair = _pair(str(schema.get("description", "")))
+        if pair is None or (pair[0] in said) == (pair[1] in said):
+            continue  # neither word, or both ("off and on again"): nothing to go by
+        wanted = pair[0] if pair[0] in said else pair[1]
+        if (wanted == pair[0]) != value:
+            return wanted
+    return None
