@@ -34,16 +34,20 @@ async def test_a_negated_request_never_reaches_the_robot() -> None:
     assert "not to do this now" in result.outcomes[0].text  # the refusal says why, for any later step
 
 
-async def test_a_refusal_beside_talk_is_worded_by_the_model() -> None:
-    """Talk that mentions a place gets the model's own words: it has more to say than "I see."."""
+async def test_talk_is_answered_at_once_and_a_question_by_the_model() -> None:
+    """Talk that mentions a place: the robot's own "I see." at once. A question the model took
+    for an order: the model words the answer (it may have looked something up)."""
     async with scripted_sim(
-        [call("navigate_to", target="bathroom"), TextReply("I hope she has a lovely day.")]
+        [call("navigate_to", target="bathroom"), call("navigate_to", target="bathroom"),
+         TextReply("I have not been there today.")]
     ) as (robot, server, backend):
-        result = await Assistant(backend, robot.tools).turn("My daughter rang from her bathroom this morning.")
-    assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
-    assert result.reply == "I hope she has a lovely day."
-    tool_message = server.requests[1].messages[-1]  # the model was told why, with a hint it can follow
-    assert tool_message["role"] == "tool" and "telling you something" in tool_message["content"]
+        talk = await Assistant(backend, robot.tools).turn("My daughter rang from her bathroom this morning.")
+        question = await Assistant(backend, robot.tools).turn("Did you go to the bathroom this morning?")
+    assert [o.error for o in talk.outcomes] == [NOT_REQUESTED] and talk.reply == "I see."
+    assert [o.error for o in question.outcomes] == [NOT_REQUESTED]
+    assert question.reply == "I have not been there today."
+    tool_message = server.requests[2].messages[-1]  # the model was told why, with a hint it can follow
+    assert tool_message["role"] == "tool" and "asked a question" in tool_message["content"]
 
 
 async def test_without_the_checks_the_same_call_reaches_the_robot() -> None:

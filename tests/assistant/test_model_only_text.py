@@ -116,11 +116,11 @@ def echo_the_hint(request: Any) -> Any:
     if tool.get("role") != "tool":
         return ToolCallReply((ScriptedCall("navigate_to", {"target": "bathroom"}),))
     hint = json.loads(tool["content"])["hint"]
-    return TextReply(f"{hint} That's lovely to hear.")
+    return TextReply(f"{hint} Not today.")
 
 
-async def _turn_with(reply: Any, text: str = "My daughter rang from her bathroom.") -> tuple[Any, list[str], str]:
-    """(Talk, not a refusal of a request: a request declined alone gets the robot's own line, no model step.)"""
+async def _turn_with(reply: Any, text: str = "Did you go to the bathroom today?") -> tuple[Any, list[str], str]:
+    """(A question: talk or a request declined alone gets the robot's own line, no model step.)"""
     said: list[str] = []
 
     def on_event(event: TurnEvent) -> None:
@@ -141,7 +141,7 @@ async def test_a_model_that_echoes_the_gate_hint_has_only_its_own_words_said() -
     result, said, hint = await _turn_with(echo_the_hint)
     assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
     assert hint not in result.reply and hint.split(". ")[0] not in " ".join(said)  # the model read it out
-    assert said == ["That's lovely to hear."] and result.reply == "That's lovely to hear."
+    assert said == ["Not today."] and result.reply == "Not today."
 
 
 def only_the_hint(request: Any) -> Any:
@@ -157,7 +157,7 @@ async def test_a_reply_that_is_nothing_but_the_hint_ends_the_turn_with_words_of_
     result, said, _ = await _turn_with(only_the_hint)
     assert [o.error for o in result.outcomes] == [NOT_REQUESTED]
     assert said == [wordless_reply(result.outcomes, ())] and result.reply == said[0]
-    assert said == ["I see."]  # the refusal's reason: the person was telling the robot something
+    assert said == ["I'm not sure. Could you ask me another way?"]  # the refusal's reason: a question
 
 
 @pytest.mark.parametrize("reason", refusal_reasons())

@@ -123,10 +123,17 @@ async def test_a_question_about_the_result_gets_the_model(tmp_path: Path) -> Non
 
 
 async def test_a_refused_call_gets_the_model_with_its_hint(tmp_path: Path) -> None:
-    script: list[ScriptedReply] = [call("start_video_call", contact="Ben"), TextReply("That's nice to hear.")]
+    script: list[ScriptedReply] = [call("start_video_call", contact="Ben"), TextReply("He rang at ten.")]
+    (result,), server, _, _ = await run(tmp_path, script, "When did my son Ben phone?")
+    assert result.outcomes[0].error == "not_requested"
+    assert len(server.requests) == 2 and result.reply == "He rang at ten."
+
+
+async def test_a_call_refused_on_talk_alone_is_answered_by_the_robot(tmp_path: Path) -> None:
+    script: list[ScriptedReply] = [call("start_video_call", contact="Ben"), TextReply("never asked for")]
     (result,), server, _, _ = await run(tmp_path, script, "My son Ben phoned earlier.")
     assert result.outcomes[0].error == "not_requested"
-    assert len(server.requests) == 2 and result.reply == "That's nice to hear."
+    assert len(server.requests) == 1 and result.reply == "I see."
 
 
 async def test_an_ability_question_about_the_call_made_is_answered_by_the_robot(tmp_path: Path) -> None:

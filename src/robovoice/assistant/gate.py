@@ -232,14 +232,14 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
                 glossed, elsewhere, kinds, pooled=pooled)
 
 
-def _only_declined(intent: Intent, why: str | None) -> bool:
-    """A call refused as declined where every clause declines or is talk (no request, question or
-    ability question): the robot's own "All right, I won't." answers at once. The model, asked to
-    word it, took 5-7 s on the embedded model and was mostly given that line anyway (text test
-    v71: first sentence p50 8.6 s on negations, against 4.1 s on single requests). Talk that only
-    mentions someone still gets the model's words: "My husband used to sit in the kitchen" wants
-    more than "I see."."""
-    return why == ClauseKind.NEGATED.value and all(
+def _only_talk(intent: Intent, why: str | None) -> bool:
+    """A call refused as declined or as talk where every clause declines or is talk (no request,
+    question or ability question): the robot's own line ("All right, I won't.", "I see.") answers
+    at once. The model, asked to word it, took 5-7 s on the embedded model and was mostly given
+    that line anyway: in text tests v71 and v72 the first sentence came 8.5-9.6 s (median) after
+    negations and mentions against 3.4-4.1 s after single requests, and 12 of the 13 mentions whose
+    every call was refused ended with "I see."."""
+    return why in (ClauseKind.NEGATED.value, ClauseKind.STATEMENT.value) and all(
         c.kind in (ClauseKind.NEGATED, ClauseKind.STATEMENT) for c in intent.clauses)
 
 
@@ -291,7 +291,7 @@ def refusal(
             why = WRONG_WAY  # "turn the projector off" with on: true (the model's slip, text test v63)
         else:
             return None
-    answer = _only_declined(intent, why) or (why == ClauseKind.ABILITY.value and spec is not None
+    answer = _only_talk(intent, why) or (why == ClauseKind.ABILITY.value and spec is not None
                                              and _about_this(intent, spec, arguments, said, declared))
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
     others = sorted({*fitting_tools(intent, declared, name), *([owner] if owner else [])}) if why == OTHER else []
