@@ -170,7 +170,7 @@ async def test_the_voice_pipeline_never_speaks_the_gate_hint_the_model_reads_out
     from ..assistant.test_model_only_text import echo_the_hint
 
     models, tts = recording_models(fakes)
-    transcriber.text = "Hey Jarvis, don't drive to the bathroom just now."
+    transcriber.text = "Hey Jarvis, did you go to the bathroom today?"  # a question: the model words the answer
     with caplog.at_level(logging.WARNING, logger="robovoice.voice.speech"):
         async with FakeOpenAIServer(default=CallbackReply(echo_the_hint)) as server:
             backend = OpenAICompatBackend(server.base_url, server.model)
@@ -184,5 +184,5 @@ async def test_the_voice_pipeline_never_speaks_the_gate_hint_the_model_reads_out
                 await backend.aclose()
     hint = json.loads(server.requests[1].messages[-1]["content"])["hint"]
     spoken = [e.text for e in s.log.of(SentenceSpoken)]
-    assert spoken == ["All right, I will stay here."] and tts.texts == spoken
+    assert spoken == ["Not today."] and tts.texts == spoken
     assert "the model's instructions" in caplog.text and hint.split(".")[0] in caplog.text
