@@ -176,14 +176,9 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
         run = first
         while run is not None and run + 1 in places and _then_before(clauses[run + 1], text):
             run += 1
-        # (and "Living room, open projector, then ring Anna": the request after it begins the list's
-        # "then", text test v72)
         if first in places and run is not None and run + 1 in others \
                 and words(clauses[first].text)[0] not in IMPERATIVES \
-                and not _GREETING.match(clauses[first].text.strip()) and (
-                    _then_before(clauses[run + 1], text)
-                    or (run + 2 in others and _then_before(clauses[run + 2], text)
-                        and _place_like(clauses[first].text))):
+                and not _GREETING.match(clauses[first].text.strip()) and _then_before(clauses[run + 1], text):
             steps |= set(range(first, run + 1))
         # "front door, after that the kitchen": nothing but places, one after the other (text test v63)
         # (not a question: "kitchen, then the bedroom?", where the glasses may be)
@@ -208,14 +203,6 @@ def named_back(bare: str, clauses: list[Clause], undone: list[int]) -> set[int] 
     hit = {i for i, c in enumerate(clauses)
            if (c.kind is ClauseKind.REQUEST or i in undone) and named & set(words(c.text))}
     return hit or None
-
-
-def _place_like(said: str) -> bool:
-    """A bare phrase that reads as a place, not a name said first to someone ("Ben, switch the
-    projector on, then …"): it opens with an article, or a word after the first is written small
-    ("Living room")."""
-    tokens = said.split()
-    return bool(tokens) and (tokens[0].lower() in ("the", "my", "your") or any(t[:1].islower() for t in tokens[1:]))
 
 
 def _a_name(said: str, text: str) -> bool:
