@@ -1324,3 +1324,14 @@ def test_a_hedged_command_and_a_courtesy_condition(text: str, steps: tuple[str, 
 def test_we_can_do_it_now_asks(text: str, steps: tuple[str, ...]) -> None:
     """Audio test v60: "okay, I think we can end the call now" was talk, and the call went on."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Could you call Doctor Weber after you get to the bedroom.", ("go to the bedroom", "Could you call Doctor Weber")),
+    ("Put the projector on when you get to the bedroom.", ("go to the bedroom", "Put the projector on")),
+    ("Ring Clara once you reach the living room, please.", ("go to the living room", "Ring Clara")),
+])
+def test_an_arrival_said_in_the_present_after_the_request_is_done_first(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v71: "… call Doctor Weber after you get to the bedroom" was one step, and the model
+    only called; "once you've got to …" was read so already."""
+    assert read_request(text).worded_steps == steps

@@ -115,12 +115,18 @@ SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| hav
 # kitchen, …": that may be whenever it is), and "… once you've got to the bedroom", said last.
 ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (text test v55)
                         r"(?:in|at|by|inside|into)| (?:reach|get to|arrive at|make it to)) "  # (text test v68)
-                        r"((?:the|my|your) \w+(?: \w+)?)$", re.IGNORECASE)
+                        r"((?:the|my|your) \w+(?: \w+)?)$"
+                        r"|^(?:after|when) you (?:reach|get to|arrive at|make it to) ((?:the|my|your) \w+(?: \w+)?)$",
+                        re.IGNORECASE)  # (text test v71: "… after you get to the bedroom")
 ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|inside) (?:the|my|your) \w+(?: \w+)?"
                      r"|(?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"
                      r"|been|gone|popped|nipped|come|driven|headed|moved)"
                      r"(?: yourself| over| down| up| through| across| back)*"
-                     r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?)\s*$", re.IGNORECASE)
+                     r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?"
+                     # … and said in the present: "call Doctor Weber after you get to the bedroom" (text test v71)
+                     r"|(?:once|when|after|as soon as) you (?:get|arrive|reach|make it)"
+                     r"(?: back| over| down| up| through)*(?: (?:to|into|in|at))? (?:the|my|your) \w+(?: \w+)?)\s*$",
+                     re.IGNORECASE)
 
 # "call Clara after you put the projector on", "go to the kitchen after you've rung Ben" (text
 # test v59), in one breath: what comes after "after you" is done first (`SEQUENCE`, `intent`)

@@ -189,11 +189,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         elif there := ONCE_THERE.match(bare):
             # "once you're in the bedroom, get Dr Weber on a video call": going there is the
             # first step, unless a request said before goes there already
-            place = set(words(there.group(1))) - ARTICLES
+            where = there.group(1) or there.group(2)
+            place = set(words(where)) - ARTICLES
             if any(c.kind is ClauseKind.REQUEST and place <= set(words(c.text)) for c in clauses):
                 clauses.append(Clause(part, ClauseKind.STATEMENT))
                 continue
-            kind, part = ClauseKind.REQUEST, f"go to {there.group(1)}"
+            kind, part = ClauseKind.REQUEST, f"go to {where}"
         elif arrival := ON_ARRIVAL.match(bare):
             rest = bare[arrival.end():]
             if not rest or classify(rest) is not ClauseKind.REQUEST:
