@@ -116,3 +116,23 @@ def test_a_patois_or_hong_kong_request_is_read(text: str, steps: tuple[str, ...]
     """Text test v72: "go a di kitchen, den call Anna" did only the drive, "mek we call Anna nuh"
     was talk."""
     assert read_request(text).worded_steps == steps
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Close the light of the projector u go back to charge.", "turn off the projector and go back to charge."),
+    ("can u go to the kitchen", "can u go to the kitchen"),  # texting's "you", spelled out later by `lexicon`
+    ("Mela, pass from the hallway, then the bedroom, ejja.", "go to the hallway, then the bedroom."),
+])
+def test_maltese_turns_are_said_as_english_says_them(said: str, english: str) -> None:
+    assert in_english(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Finish this call, then open the projector, ejja.", ("Finish this call", "turn on the projector")),
+    ("Tell me, you drive to the kitchen alone, or someone must push you?", ()),  # asks how, no drive
+    ("You go to the kitchen, or call Ben, whichever.", ("You go to the kitchen",)),  # no question: asked
+])
+def test_a_maltese_request_or_question_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v73: "ejja" was a step, "… u go back to charge" lost the dock, and "you drive to
+    the kitchen alone, or someone must push you?" drove."""
+    assert read_request(text).worded_steps == steps

@@ -95,13 +95,32 @@ _OPEN = re.compile(r"\b(open|close)\s+(?:the\s+)?(projector|screen)\b", re.IGNOR
 _CHEER = re.compile(r"\badd oil\b[\s,!.]*|\bar\b(?=\s+robot\b)", re.IGNORECASE)
 
 
+# Maltese English (text test v73): "u" between a thing and a request is "and" (not texting's "you":
+# "can u go …"); "pass from / through the X" is going there on the way; "ejja" (come on) and "mela"
+# (so) open or close a request; "the light of the projector" is the projector
+_AND_U = re.compile(r"\b(\w+)\s+u\s+(?=(?:go|come|call|ring|switch|turn|put|close|open|end|take|head|drive|get"
+                    r"|stop|show|bring|finish)\b)", re.IGNORECASE)
+_NOT_AND = frozenset({"can", "could", "will", "would", "do", "did", "are", "were", "if", "when", "thank", "have",
+                      "should", "shall", "may", "might", "must", "love", "need", "want", "let", "as", "so", "and",
+                      "or", "than", "that", "then", "once", "before", "after", "till", "until", "see", "tell"})
+_PASS_FROM = re.compile(r"\bpass (?:from|through|by) (?=(?:the|my|your)\b)", re.IGNORECASE)
+_MALTESE_FILLER = re.compile(r"\b(?:ejja|mela)\b[,!.]?\s*|,\s*(?:ejja|mela)\b(?=\s*[.!?]|$)", re.IGNORECASE)
+_LIGHT_OF = re.compile(r"\bthe light (?:of|on) the (projector|screen)\b", re.IGNORECASE)
+
+
+def _maltese(text: str) -> str:
+    text = _AND_U.sub(lambda m: m.group(0) if m.group(1).lower() in _NOT_AND else f"{m.group(1)} and ", text)
+    return _LIGHT_OF.sub(r"the \1", _PASS_FROM.sub("go to ", _MALTESE_FILLER.sub("", text)))
+
+
 def in_english(text: str) -> str:
     """`text` with the requests, order words and rooms said in Hindi or Spanish put in English,
-    and the turns of Singlish, Southern US, Jamaican Patois and Hong Kong English said as English
-    says them."""
+    and the turns of Singlish, Southern US, Jamaican Patois, Hong Kong and Maltese English said as
+    English says them."""
     text = _HINDI_OFF.sub("off", _HINDI_ON.sub("on", text))  # "Projector band karo": "projector off"
     text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
     text = _CAN_OR_NOT.sub(r"\1can you \2", text)
+    text = _maltese(text)
     for pattern, english in _PATOIS:  # before the dropped g: "an'" is "and", not "ang"
         text = pattern.sub(english, text)
     text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))

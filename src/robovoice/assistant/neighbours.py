@@ -77,7 +77,26 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    return _before_that_last(_done_too(_own_and(_not_that_but(_name_list(out, text)), text), text), text)
+    return _either_or(_before_that_last(_done_too(_own_and(_not_that_but(_name_list(out, text)), text), text), text),
+                      text)
+
+
+_YOU_VERB = re.compile(r"^you (\w+)\b", re.IGNORECASE)
+
+
+def _either_or(clauses: list[Clause], text: str) -> list[Clause]:
+    """"Tell me, you drive to the kitchen alone, or someone must push you?": "you <verb> …" then an
+    "or …" and a question mark asks how it does it, as "can you …?" would (text test v73: it drove)."""
+    out = list(clauses)
+    if not text.rstrip().endswith("?"):
+        return out
+    for i in range(len(out) - 1):
+        said = FILLER.sub("", out[i].text.strip()).strip()
+        verb = _YOU_VERB.match(said)
+        if out[i].kind is ClauseKind.REQUEST and verb and verb.group(1).lower() in IMPERATIVES \
+                and words(out[i + 1].text)[:1] == ["or"]:
+            out[i] = Clause(out[i].text, ClauseKind.ABILITY)
+    return out
 
 
 _BARE_NAME = re.compile(r"^(?:and )?[A-Z][a-z]+$")
