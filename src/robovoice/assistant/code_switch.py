@@ -1,5 +1,6 @@
 """Words of another language said inside English speech, in English, before the reading; and
-turns of a dialect said as standard English says them (Singlish, Southern US).
+turns of a dialect said as standard English says them (Singlish, Southern US, Jamaican Patois,
+Hong Kong and Maltese English).
 
 A home-help mixes in her Spanish ("prende el projector", "ve a la cocina primero"), an Indian
 family its Hindi ("projector band karo"). Only requests, order words and the names of rooms

@@ -96,11 +96,12 @@ def vocabulary(name: str, declared: Iterable[str], arguments: Mapping[str, Any])
     return [[stem(w)] for w in own + values + said_aloud] + [_stems(phrase) for phrase in declared]
 
 
-def names(sentence: str, name: str, arguments: Mapping[str, Any]) -> bool:
+def names(sentence: str, name: str, arguments: Mapping[str, Any], declared: Sequence[str] = ()) -> bool:
     """The sentence names this call: a word of the tool's name or of its text arguments ("The
-    video call with Ben has started." names start_video_call(contact=Ben))."""
+    video call with Ben has started." names start_video_call(contact=Ben)), or one of the tool's
+    `declared` words ("screen" for the projector)."""
     said = _stems(sentence)
-    return any(_says(said, phrase) for phrase in vocabulary(name, (), arguments))
+    return any(_says(said, phrase) for phrase in vocabulary(name, declared, arguments))
 
 
 # The courtesy a request may open with, before its verb: "could you please hang up the call"

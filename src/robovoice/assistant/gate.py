@@ -288,7 +288,7 @@ def refusal(
         elif doubtful and spec is not None and unlisted(spec.parameters, arguments):
             why = UNCLEAR  # "ring gunner", misheard: which one it knows, not a question about "Gunner"
         elif spec is not None and wrong_way(intent, name, spec.parameters, arguments, declared.get(name, ())):
-            why = WRONG_WAY  # "turn the projector off" with on: true (the model's slip, text test v63)
+            why = WRONG_WAY  # "turn the projector off" with on: true (`polarity`)
         else:
             return None
     answer = _only_talk(intent, why) or (why == ClauseKind.ABILITY.value and spec is not None

@@ -46,7 +46,8 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
              # not a call to the person's son, text test v37; "my son" is someone)
              r"ta|cheers|ta very much|son|lad|lass|sunshine|buddy|chief|kiddo|young man|my lad|my boy|my girl|"
              r"(?:muchas )?gracias|mija|mijo|mi amor|shukriya|dhanyavaad|"  # (text test v69)
-             r"hon|honey|sugar|sweetie|bruv|bredda|chale|grazzi)$",  # Southern US (text test v71)
+             # Southern US (text test v71), Jamaican London and Ghanaian (v72), Maltese (v73)
+             r"hon|honey|sugar|sweetie|bruv|bredda|chale|grazzi)$",
              re.IGNORECASE)
 
 # Putting a request off.

@@ -16,7 +16,7 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.fit import refers_back, stem, vocabulary
+from robovoice.assistant.fit import names, refers_back
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.reading import ClauseKind, Intent
 
@@ -37,18 +37,12 @@ def _pair(description: str) -> tuple[str, str] | None:
     return None
 
 
-def _names_tool(text: str, phrases: Sequence[Sequence[str]]) -> bool:
-    said = [stem(w) for w in words(text)]
-    return any(p and any(said[i:i + len(p)] == list(p) for i in range(len(said) - len(p) + 1)) for p in phrases)
-
-
 def wrong_way(intent: Intent, name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
               declared: Sequence[str]) -> str | None:
     """The word the request says ("off") when this call sends the opposite value, else None."""
     properties = parameters.get("properties") or {}
-    vocab = vocabulary(name, declared, {})
     asked = [c.text for c in intent.clauses if c.kind is ClauseKind.REQUEST
-             and (_names_tool(c.text, vocab) or refers_back(c.text))]
+             and (names(c.text, name, {}, declared) or refers_back(c.text))]
     said = {w for text in asked for w in words(text)}
     for arg, value in arguments.items():
         schema = properties.get(arg)
