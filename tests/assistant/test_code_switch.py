@@ -63,3 +63,30 @@ def test_a_taglish_request_is_read(text: str, steps: tuple[str, ...]) -> None:
     """Text test v75: "pakibukas po yung projector", "punta ka sa sala tapos buksan mo …" were
     talk; a Tagalog aside after a request ("andun na daw siya") was one more thing asked."""
     assert read_request(text).worded_steps == steps
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Pa-off mo na yung projector, inaantok na ako.", "turn off the projector,."),
+    ("Dun ka muna sa kusina, tapos sa banyo naman.", "go to the kitchen, then go to the bathroom."),
+    ("Bago ka bumalik sa charger, i-video call mo muna si Clara.",
+     "before you go back to the charger, video call Clara."),
+    ("Para! Dyan ka lang muna.", "stop! stay there first."),
+    ("Pagdating mo sa sala, pakibukas agad ng projector.",
+     "when you get to the living room, please turn on the projector."),
+    ("para makapag-usap tayo", "para makapag-usap tayo"),  # no word only Tagalog has: as said
+])
+def test_more_taglish_requests_are_put_in_english(said: str, english: str) -> None:
+    assert in_english(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Dun ka muna sa kusina, tapos sa banyo naman.", ("go to the kitchen", "go to the bathroom")),
+    ("Bago ka bumalik sa charger, i-video call mo muna si Clara.", ("video call Clara", "go back to the charger")),
+    ("Kaya mo bang tumawag mag-isa kay Ben, o tutulungan pa kita?", ()),
+    ("Pagdating mo sa sala, pakibukas agad ng projector.", ("go to the living room", "please turn on the projector")),
+])
+def test_more_taglish_requests_are_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v76: "pa-on", "dun ka na lang sa sala", "silipin mo sa front door", "i-video call
+    mo si Anna", "tapos sa kusina", "bago mo tawagan si Clara, …" and "pagdating mo sa …" were
+    talk or did one step; "kaya mo bang … mag-isa, o …?" (by yourself, or …?) switched on."""
+    assert read_request(text).worded_steps == steps

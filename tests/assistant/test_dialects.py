@@ -138,3 +138,33 @@ def test_a_scots_request_or_talk_is_read(text: str, steps: tuple[str, ...]) -> N
 def test_english_and_other_dialects_keep_ben_and_ma(said: str) -> None:
     """Scots "ben" (through) and "ma" (my) are lower case: "get Ben" is the son (reading diff)."""
     assert as_standard(said) == said
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Go intae the living room an stick the projector on.", "Go into the living room and stick the projector on."),
+    ("an once that's done, an hour later", "and once that's done, an hour later"),  # "an hour" is English
+    ("Pit on yon projector, syne hing up.", "put on that projector, then hang up."),
+    ("Eh think ye'd better bide here, ken.", "I think you'd better stay here."),
+    ("Ah watch the fitba on it.", "I watch the fitba on it."),
+    ("Ah, watch out for the step.", "Ah, watch out for the step."),  # English's "Ah, …"
+    ("Ken said hello.", "Ken said hello."),  # the name, not the tag
+    ("ah'm gonnae need ye tae phone Anna", "I need you to phone Anna"),
+    ("Gang by the bedroom, then come back ben the kitchen.",
+     "go by the bedroom, then come back through to the kitchen."),
+    ("They dug a pit the size of a house.", "They dug a pit the size of a house."),  # a pit
+])
+def test_more_scots_turns_are_said_as_english_says_them(said: str, english: str) -> None:
+    assert as_standard(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Ye'd better pit the projector aff an get yersel tae the kitchen.",
+     ("you'd better put the projector off", "get yourself to the kitchen")),
+    ("Gang ben the bathroom, syne hing up on Ben.", ("go through to the bathroom", "hang up on Ben")),
+    ("Ah like that projector fine, it's braw.", ()),
+    ("Haud on, ah'm gonnae need ye in the lobby.", ("I need you in the lobby",)),
+])
+def test_a_glasgow_request_or_talk_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v77: "an" (and) joined two steps into one, "pit", "hing up", "syne" were not
+    words the reading knew, and "Ah watch the fitba on it" (I watch) was a request."""
+    assert read_request(text).worded_steps == steps

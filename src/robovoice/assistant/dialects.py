@@ -84,13 +84,32 @@ _SCOTS_WORDS = {
     "didnae": "didn't", "cannae": "can't", "canna": "can't", "wullnae": "won't", "winnae": "won't",
     "isnae": "isn't", "wasnae": "wasn't", "wisnae": "wasn't", "couldnae": "couldn't", "wouldnae": "wouldn't",
     "widnae": "wouldn't", "shouldnae": "shouldn't", "doesnae": "doesn't", "havenae": "haven't", "arenae": "aren't",
+    # (text test v77) "syne come back", "hing up", "haud on", "turn roon", "oor Anna", "yon projector", "bide"
+    "syne": "then", "hing": "hang", "haud": "hold", "roon": "round", "oor": "our", "yon": "that", "bide": "stay",
+    "awfy": "awful", "wid": "would", "wis": "was", "huv": "have", "dinnae fash": "don't worry",
 }  # fmt: skip
 _SCOTS_WORD = re.compile(r"\b(" + "|".join(sorted(_SCOTS_WORDS, key=len, reverse=True)) + r")\b(?!['\u2019]\w)",
                          re.IGNORECASE)  # the longest first: "the noo" before "noo"
 _SCOTS = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
     (r"(^|[.!?,;\u2026]\s*)gonnae no\b", r"\1please don't"), (r"(^|[.!?,;\u2026]\s*)gonnae\b", r"\1will you"),
     (r"\bgonnae\b", "going to"),
-    (r"\b(away|go|come|get|head|nip|gang)\s+(?-i:ben)(?:\s+to)?\b", r"\1 through to"),
+    (r"\b(away|go|come|get|head|nip|gang)((?:\s+back)?)\s+(?-i:ben)(?:\s+to)?\b", r"\1\2 through to"),
+    # "an" before a sound no English "an" comes before is "and": "an stick the projector on", "an then",
+    # "an once that's done", "an get yersel back"
+    (r"\ban(?=\s+(?:once|after|our|(?!(?:hour|honest|heir|honou?r)\b)[b-df-hj-np-tv-z]))", "and"),
+    (r"\bye(?=['\u2019](?:d|re|ve|ll)\b)", "you"),  # "ye'd better", "ye're awfy low"
+    (r"(^|[.!?,;\u2026]\s*|\b(?:and|an|then|syne|just|please|you|ye|to|tae|can|will|better|go|come)\s+)pit\b"
+     r"(?=\s+(?:that|the|this|it|on|off|aff|my|yon|a)\b)", r"\1put"),  # not "a pit the size of …"
+    (r"\bgang\b(?=\s+(?:by|to|tae|back|through|ben|up|down|doon|out|oot|in|intae|over|ower|away|awa)\b)", "go"),
+    # "Ah" and Dundee's "Eh" as "I" before a verb with no comma ("Ah watch the fitba on it", "Eh need
+    # ye"), not the "Ah, …" of English; "ken" as a tag is "you know", not Ken
+    (r"\b(?:(?-i:Ah)|(?-i:ah)|(?-i:Eh)|(?-i:eh))(?=['\u2019](?:m|ll|ve|d)\b|\s+(?:watch|need|want|think|ken|don't|can't"
+     r"|can|will|would|am|was|have|had|said|told|like|love|hate|got|went|know|cannae|dinnae|wid|wis|huv|mean"
+     r"|forgot|canna|dinna)\b)", "I"),  # not "Ah go on" (Irish English: go on then) nor "Ah never mind"
+    (r"\s*,?\s*\b(?:ye |you )?(?-i:ken)\b(?=\s*(?:[,.!?\u2026]|$))", ""),
+    # "ah'm gonnae need ye tae …" asks now, as "I need you to …" does
+    (r"\b(?:i'm|i am|i'll|i will)\s+(?:going to\s+|be\s+)?need(?:ing)? you\b", "I need you"),
+
     (r"\b(?-i:ben) the house\b", "through the house"),
     (r"\bthe now\b", "now"), (r"\bthe morra\b", "tomorrow"),
     (r"\b(i'm|i am|it's|that's|you're|we're|they're|he's|she's)\s+no\b(?!\s*[,.!?\u2026]|$)", r"\1 not"),

@@ -23,7 +23,7 @@ FILLER = re.compile(
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|ah|ahh|aah|aw|k|like|what am i saying|what was i thinking|silly me|y'all|yo|"
     r"bro|bruh|dude|yaar|arre|arey|accha|achha|acha|"  # young people's and Hinglish openers (text test v68)
-    r"ay|oy vey|oy|oye|nu|"  # Spanish and Yiddish ones (text test v69)
+    r"ay|oy vey|oy|oye|nu|hoy|oi|"  # Spanish, Yiddish (text test v69) and Tagalog ones (text test v76)
     r"aiyah|aiya|aiyoh|aiyo|alamak|walao|wah|"  # Singlish ones (text test v70)
     r"aye|och|ach|"  # Scots ones (text test v74)
     r"(?:i'?ll )?tell you what|"

@@ -15,10 +15,12 @@ import re
 
 _MARKER = re.compile(r"\b(?:po|naman|nga|lang|muna|tapos|tas|pagkatapos|saka|kaya|punta|pumunta|balik|bumalik|buksan|"
                      r"paki\w+|patayin|isara|tawagan|tawag|salamat|huwag|wag|mamaya|yung|kwarto|kuwarto|banyo|"
-                     r"kusina|pasilyo|sige|diba|daw)\b", re.IGNORECASE)
+                     r"kusina|pasilyo|sige|diba|daw|silipin|tingnan|sundan|lumapit|pagdating|diretso|ngayon|ayan|kasi|"
+                     r"nandun|nandoon|andun|andoon|nandito|andito|uwi|umuwi|daan|dumaan|hinto|huminto|tigil)\b",
+                     re.IGNORECASE)
 
 # what a verb may carry after it: its pronoun and particles ("buksan mo na po yung …")
-_AFTER_VERB = r"(?:\s+(?:mo|mong|nyo|niyo|ninyo|natin|ka|kang|kayo|na|po|naman|nga|lang|daw|muna)\b)*"
+_AFTER_VERB = r"(?:\s+(?:mo|mong|nyo|niyo|ninyo|natin|ka|kang|kayo|na|po|naman|nga|lang|daw|muna|agad)\b)*"
 _THE = r"(?:\s+(?:ang|yung|iyong|ng|the)\b)?"
 _CALL_NOUN = r"\s+(?:ang\s+|yung\s+|ng\s+|the\s+)?(?:tawag|call)\b"
 
@@ -29,6 +31,33 @@ _ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r"
 _PLACE = r"((?:the\s+)?(?:living room|front door|charging dock|[a-z]+))"
 
 _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+    # (text test v76) an English verb made Tagalog: "pa-on naman ng projector", "i-video call mo si Anna"
+    (r"\bpa-?(on|off)\b" + _AFTER_VERB + _THE, r"turn \1 the"),
+    (r"\bi-(video call|call|charge|text|check|cancel|stop|open|close|end)\b", r"\1"),
+    (r"\bmag-?charge\b", "go charge"),
+    # "bago mo tawagan si Clara, …": before you call Clara; "pagdating mo sa …": when you get to the …
+    (r"\b(?:bago|before)\s+(?:mo|ka|nyo|niyo)\b", "before you"),
+    (r"\bpagdating\b" + _AFTER_VERB + r"\s+sa\b", "when you get to the"),
+    (r"\bpero\s+una\b,?", "but first"), (r"\bpero\b", "but"), (r"\s*,?\s*\bkasi\b", ", because"),
+    (r"\b(?:nasaan|saan)\s+(?:ka|kayo)\b", "where are you"), (r"\bkung\b", "if"),
+    (r"\bmag-isa\b", "by yourself"), (r"\bngayon\b", "now"),
+    (r"\b(?:ayan|ayun)\b[.!,]?", ""),
+    # "para, para!" (what a jeepney's passenger calls out): stop; elsewhere "para" is "so that"
+    (r"(^|[.!?,]\s*)para(?=\s*(?:[!,]|$))", r"\1stop"),
+    # going somewhere: "silipin mo sa front door" (go and look), "lumapit ka dito sa kusina" (come
+    # over to), "daan ka sa hallway" (go by), "uwi ka na sa charging dock" (go home to), "diretso ka
+    # sa …", "sundan mo ako sa kwarto" (follow me to), "dun ka na lang sa sala" (be in the living room)
+    (r"\b(?:silipin|tingnan)\b" + _AFTER_VERB + r"\s+sa\b", "go and check the"),
+    (r"\b(?:silipin|tingnan)\b" + _AFTER_VERB, "check"),
+    (r"\b(?:lumapit|lapit)\b" + _AFTER_VERB + r"(?:\s+(?:dito|rito|diyan|dyan))?\s+sa\b", "come to the"),
+    (r"\b(?:dumaan|daan)\b" + _AFTER_VERB + r"\s+sa\b", "go by the"),
+    (r"\b(?:umuwi|uwi)\b" + _AFTER_VERB + r"\s+sa\b", "go back to the"),
+    (r"\b(?:dumiretso|diretso|tumuloy|tuloy)\b" + _AFTER_VERB + r"\s+sa\b", "go straight to the"),
+    (r"\bsundan\b" + _AFTER_VERB + r"\s+ako\s+sa\b", "follow me to the"),
+    (r"\b(?:d?iyan|dyan|doon|dun)\s+(?:ka|kayo)\b" + _AFTER_VERB + r"\s+sa\b", "go to the"),
+    # a room's owner after it: "sa kwarto ni Lola" is the bedroom
+    (r"\b(kwarto|kuwarto|bedroom|room|sala)\s+(?:ni|nina)\s+(?:(?:tita|tito|ate|kuya|lola|lolo)\b\s*)?"
+     r"(?:(?-i:[A-Z])\w*)?", r"\1"),
     # a call ended: "patayin mo muna ang tawag", "pakipatay na po ng call", "ibaba mo ang tawag"
     (r"\b(?:paki)?(?:patay|patayin|isara|sara|ibaba|baba)\b" + _AFTER_VERB + _CALL_NOUN, "end the call"),
     (r"\bpaki(?:bukas|on)\b" + _AFTER_VERB + _THE, "please turn on the"),
@@ -36,7 +65,7 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\bpaki(?:patay|sara|off)\b" + _AFTER_VERB + _THE, "please turn off the"),
     (r"\b(?:patayin|isara|i-off)\b" + _AFTER_VERB + _THE, "turn off the"),
     (r"\bpaki(?:tawag|tawagan)\b" + _AFTER_VERB + r"(?:\s+(?:si|kay|ni))?\b", "please call"),
-    (r"\btawagan\b" + _AFTER_VERB + r"(?:\s+(?:si|kay|ni))?\b", "call"),
+    (r"\b(?:tawagan|tumawag)\b" + _AFTER_VERB + r"(?:\s+(?:si|kay|ni))?\b", "call"),
     (r"\b(?:pumunta|punta|pupunta|magpunta)\b" + _AFTER_VERB + r"\s+sa\b", "go to the"),
     (r"\b(?:pumunta|punta|pupunta|magpunta)\b" + _AFTER_VERB, "go to"),
     (r"\b(?:bumalik|balik)\b" + _AFTER_VERB + r"\s+sa\b", "go back to the"),
@@ -54,19 +83,23 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\bbukas\s+(?:na\s+lang|natin)\b", "tomorrow"),  # else "bukas" is open
     (r"\bpagkatapos(?:\s+(?:ay|nun|non|niyan|noon))?\b|\b(?:at\s+)?saka\b(?:\s+(?:mo|nyo))?|\btapos\b|\btas\b",
      "then"),
+    (r"\b(then|and)\s+sa\b", r"\1 go to the"),  # "tapos sa kusina": then to the kitchen
+    (r"\bat\b(?=\s+(?:go|come|check|call|turn|then|end|stop|please)\b)", "and"),  # Tagalog's "and"
+    (r"\s+\bo\b(?=\s+\w)", ", or"),  # "…, o kailangan pa kitang turuan?": or
     (r"\bmuna\b", "first"), (r"\bsalamat\b", "thanks"), (r"\bsige\b", "okay"),
     (r"\b(?:si|kay|ni)\s+(?:(?:tita|tito|ate|kuya|lola|lolo)\s+)?(?=(?-i:[A-Z]))", ""),  # before a name
     (r"\b(?:tita|tito|ate|kuya|lola|lolo)\s+(?=(?:Anna|Ben|Clara|Dr|Doctor|Jarvis)\b)", ""),
     (r"\b(?:yung|iyong|ang)\b", "the"),
 ))
-_PARTICLES = re.compile(r"\s*\b(?:po|naman|nga|na|lang|daw|pala|ba|mo|ka|diba)\b", re.IGNORECASE)
+_PARTICLES = re.compile(r"\s*\b(?:po|naman|nga|na|lang|daw|pala|ba|mo|ka|diba|agad)\b", re.IGNORECASE)
 
 
 # a part still in Tagalog with its own subject ("…, andun siya", "…, tulog na ko": she's there,
 # I'm off to sleep) is talk; left in, a word or two after a request reads as one more thing asked
-_TALK = re.compile(r"[^,.;!?\u2026]*\b(?:siya|sila|ako|ko|kami|tayo|niya|namin|natin|nila)\b[^,.;!?\u2026]*",
+_TALK = re.compile(r"[^,.;!?\u2026]*\b(?:siya|sila|ako|ko|kami|tayo|niya|namin|natin|nila|kita|kitang|nandun|"
+                   r"nandoon|andun|andoon|nandito|andito)\b[^,.;!?\u2026]*",
                    re.IGNORECASE)
-_ASKS = re.compile(r"\b(?:go|call|turn|end|stop|cancel|please|don't|can you|later|tomorrow)\b", re.IGNORECASE)
+_ASKS = re.compile(r"\b(?:go|call|turn|end|stop|cancel|please|don't|can you|later|tomorrow|follow me)\b", re.IGNORECASE)
 
 
 def from_tagalog(text: str) -> str:

@@ -93,6 +93,7 @@ _ALIASES: dict[str, str] = {
     "washroom": "bathroom",
     "restroom": "bathroom",
     "hall": "hallway",
+    "lobby": "hallway",  # Scots for the hall of a house (text test v77)
     "corridor": "hallway",
     "entrance": "front door",
     "entrance door": "front door",
