@@ -53,6 +53,7 @@ def test_clock_rejects_a_bad_speed() -> None:
         ("charger", "charging dock"),
         ("Front Door", "front door"),
         ("hall", "hallway"),
+        ("the lobby", "hallway"),  # Scots for the hall of a house (text test v77)
         ("BATHROOM", "bathroom"),
         ("the front room", "living room"),  # everyday British names
         ("the loo", "bathroom"),

@@ -1,7 +1,8 @@
 """Taglish: the requests, order words, negations and rooms of Tagalog said inside English speech,
 in English, for the reading only (text test v75: "pakibukas po yung projector", "punta ka sa
 sala tapos buksan mo yung projector", "call mo si Tita Clara tas punta ka sa front door" were
-talk or did only one thing).
+talk or did only one thing; text test v76: "pa-on naman ng projector", "dun ka na lang sa sala",
+"bago mo tawagan si Clara, lumapit ka muna dito sa kusina" were talk).
 
 Nothing is rewritten unless a word only Tagalog has was said (`_MARKER`): "sala", "na", "ate"
 and "at" are English words too. Then its particles ("po", "naman", "na", "lang", ...), its
