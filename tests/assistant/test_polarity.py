@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from robovoice.assistant.gate import NOT_REQUESTED, WRONG_WAY, own_words, refusal, said_after
+from robovoice.assistant.gate import WRONG_WAY, checked, own_words, refusal, said_after
 from robovoice.assistant.intent import read_request
 from robovoice.assistant.loop import Assistant
 from robovoice.assistant.polarity import wrong_way
@@ -65,16 +65,28 @@ def test_the_robot_has_its_own_words_when_the_model_has_none() -> None:
     assert said_after(WRONG_WAY) == "Sorry, I got that the wrong way round. Could you say it again?"
 
 
-async def test_in_the_loop_the_wrong_way_never_reaches_the_robot_and_the_model_sends_the_other() -> None:
-    """The projector is on; "switch it off" and the model sends ``on: true`` first: refused, told
-    to send the other value, it does, and the projector goes off."""
-    async with scripted_sim(
-        [call("set_projector_power", on=True), call("set_projector_power", on=False),
-         TextReply("The projector is off.")]
-    ) as (robot, server, backend):
+async def test_in_the_loop_a_switch_sent_the_wrong_way_is_sent_the_way_the_words_say() -> None:
+    """The projector is on; "switch it off" and the model sends ``on: true``: the robot is sent
+    ``on: false`` (what the person asked), and is never asked to switch it on."""
+    async with scripted_sim([call("set_projector_power", on=True), TextReply("The projector is off.")]) as (
+            robot, _server, backend):
         await robot.apply_setup("projector_on")
         result = await Assistant(backend, robot.tools).turn("Could you switch the projector off, please?")
         assert robot.sim is not None and not robot.sim.state.projector_on
-    assert made(result) == [("set_projector_power", NOT_REQUESTED), ("set_projector_power", None)]
-    tool_message = server.requests[1].messages[-1]
-    assert tool_message["role"] == "tool" and "other true/false value" in tool_message["content"]
+    assert made(result) == [("set_projector_power", None)]
+    assert result.calls[0].arguments == {"on": False}
+    assert "wrong way" not in result.reply
+
+
+def test_a_switch_is_sent_the_way_the_words_say_only_where_they_ask_for_it() -> None:
+    spec = ToolSpec(PROJECTOR, SPECS[PROJECTOR].description, SPECS[PROJECTOR].parameters)
+    assert checked(read_request("Switch the projector off."), spec, {"on": True}, (), VOICE,
+                   tools=list(SPECS.values())) == ({"on": False}, None)
+    assert checked(read_request("Switch the projector off."), spec, {"on": False}, (), VOICE,
+                   tools=list(SPECS.values())) == ({"on": False}, None)
+    arguments, refused = checked(read_request("Don't switch the projector off."), spec, {"on": True}, (), VOICE,
+                                 tools=list(SPECS.values()))
+    assert arguments == {"on": True} and refused is not None and refused["details"]["reason"] != WRONG_WAY
+    arguments, refused = checked(read_request("Switch the projector off and on again."), spec, {"on": True}, (),
+                                 VOICE, tools=list(SPECS.values()))
+    assert arguments == {"on": True} and refused is None  # both words: nothing to go by

@@ -39,7 +39,7 @@ from robovoice.assistant.fit import (
     value_owner,
 )
 from robovoice.assistant.lexicon import RELATIONS, words
-from robovoice.assistant.polarity import wrong_way
+from robovoice.assistant.polarity import righted, wrong_way
 from robovoice.assistant.reading import ClauseKind, Intent
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.voice import VoiceDecl
@@ -307,3 +307,23 @@ def refusal(
                     **({"choices": choices} if choices else {}),
                     **({"answer": _AFTER[str(why)]} if answer else {})},
     }
+
+
+def checked(
+    intent: Intent | None, spec: ToolSpec | None, arguments: Mapping[str, Any], said: Collection[str] = (),
+    voice: Mapping[str, VoiceDecl] | None = None, *, doubtful: bool = False, tools: Sequence[ToolSpec] = (),
+) -> tuple[dict[str, Any], dict[str, Any] | None]:
+    """The arguments to send and the body refusing them (None: they run), as `refusal` decides. A
+    switch the model sent the wrong way round ("pakipatay po ng projector", "projector bandh kar
+    do" with on: true) is sent the way the words say when the check lets that run: the person
+    asked for it, and "Sorry, I got that the wrong way round. Could you say it again?" made them
+    say it twice (text tests v76, v77; the model, told to send the other value, seldom did)."""
+    refused = refusal(intent, spec, arguments, said, voice, doubtful=doubtful, tools=tools)
+    if refused is None or intent is None or spec is None or refused["details"].get("reason") != WRONG_WAY:
+        return dict(arguments), refused
+    declared = (voice or {}).get(spec.name)
+    right = righted(intent, spec.name, spec.parameters, arguments, declared.words if declared is not None else ())
+    if right is None or refusal(intent, spec, right, said, voice, doubtful=doubtful, tools=tools) is not None:
+        return dict(arguments), refused
+    log.info("sending %s%s the way the words say: %s", spec.name, dict(arguments), right)
+    return right, None

@@ -27,7 +27,7 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import NOT_REQUESTED, halts, held, refusal
+from robovoice.assistant.gate import NOT_REQUESTED, checked, halts, held
 from robovoice.assistant.intent import read_request
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
@@ -354,12 +354,13 @@ class Assistant:
         self, request: ToolCallRequested, metrics: TurnMetrics, emit: Emit, intent: Intent | None,
         spec: ToolSpec | None, said: set[str], doubtful: bool = False,
     ) -> tuple[ToolCalled, ToolReturned]:
+        tools, voice = await self.tools.specs(), self.tools.voice()
+        arguments, refused = checked(intent if self.checks else None, spec, request.arguments, said, voice,
+                                     doubtful=doubtful, tools=tools)  # a switch sent the way the words say
+        request = dataclasses.replace(request, arguments=arguments)
         called = ToolCalled(request.id, request.name, dict(request.arguments))
         metrics.mark(f"tool_call:{request.name}")
         await emit(called)
-        tools, voice = await self.tools.specs(), self.tools.voice()
-        refused = refusal(intent if self.checks else None, spec, request.arguments, said, voice, doubtful=doubtful,
-                          tools=tools)
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and halts(intent)):
             # the robot's stop or cancel when the words asked for nothing new but may mean it
@@ -390,8 +391,7 @@ class Assistant:
         return called, returned
 
     async def _standing_still(self, voice: Mapping[str, VoiceDecl]) -> bool:
-        """The robot's pose snapshot (voice role "pose") says it is not moving; False when
-        there is none, it fails, does not answer in time or does not say."""
+        """The pose snapshot (voice role "pose") says the robot is still; False when it does not say."""
         poses = tools_with_role(voice, "pose")
         return bool(poses) and await PoseMotionProbe(self.tools, poses[0])() is False
 

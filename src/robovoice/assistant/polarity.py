@@ -5,7 +5,7 @@ switched it on), and nothing else checks which way a switch goes. A tool
 whose yes/no argument the manifest describes with a pair of opposite words ("true to switch
 the projector on, false to switch it off") is checked against the request clauses that name
 the tool or point back at it ("turn it off"): when they say exactly one of the two words and
-the call sends the other value, the call is refused and the model is told to send the other.
+the call sends the other value, it is sent the way they say (`righted`, through `gate.checked`).
 Words that say neither ("douse", "kill", "fire up") are left to the model, as before: a check
 that guesses would refuse right calls.
 """
@@ -37,9 +37,11 @@ def _pair(description: str) -> tuple[str, str] | None:
     return None
 
 
-def wrong_way(intent: Intent, name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
-              declared: Sequence[str]) -> str | None:
-    """The word the request says ("off") when this call sends the opposite value, else None."""
+def _wanted(intent: Intent, name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
+            declared: Sequence[str]) -> tuple[str, str, bool] | None:
+    """The yes/no argument this call sends the other way round from the words, the word they say
+    ("off") and the value it means (False); None when the call goes the way they say, or they do
+    not say."""
     properties = parameters.get("properties") or {}
     asked = [c.text for c in intent.clauses if c.kind is ClauseKind.REQUEST
              and (names(c.text, name, {}, declared) or refers_back(c.text))]
@@ -53,5 +55,20 @@ def wrong_way(intent: Intent, name: str, parameters: Mapping[str, Any], argument
             continue  # neither word, or both ("off and on again"): nothing to go by
         wanted = pair[0] if pair[0] in said else pair[1]
         if (wanted == pair[0]) != value:
-            return wanted
+            return arg, wanted, not value
     return None
+
+
+def wrong_way(intent: Intent, name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
+              declared: Sequence[str]) -> str | None:
+    """The word the request says ("off") when this call sends the opposite value, else None."""
+    found = _wanted(intent, name, parameters, arguments, declared)
+    return found[1] if found is not None else None
+
+
+def righted(intent: Intent, name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
+            declared: Sequence[str]) -> dict[str, Any] | None:
+    """This call's arguments with its switch the way the words say ("switch the projector off"
+    sent as on: true, as on: false), or None when it goes their way or they do not say."""
+    found = _wanted(intent, name, parameters, arguments, declared)
+    return None if found is None else {**arguments, found[0]: found[2]}
