@@ -90,3 +90,19 @@ def test_more_taglish_requests_are_read(text: str, steps: tuple[str, ...]) -> No
     mo si Anna", "tapos sa kusina", "bago mo tawagan si Clara, …" and "pagdating mo sa …" were
     talk or did one step; "kaya mo bang … mag-isa, o …?" (by yourself, or …?) switched on."""
     assert read_request(text).worded_steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Halika dito sa kusina, may ipapakita ako sa'yo.", ("come to the kitchen",)),
+    ("Una, patayin mo ang projector, dayon balik ka sa charger.", ("turn off the projector", "go back to the charger")),
+    ("Tawagan mo si Tita Anna... ay hindi pala, mamaya na.", ()),
+    ("Pumunta ka sa banyo, pero bago 'yon, i-on mo ang projector.", ("turn on the projector", "go to the bathroom")),
+    ("Dun ka sa may pasilyo, hinihintay kita.", ("go to the hallway",)),
+    ("Head to the kitchen. Oh, no actually, stay here with me.", ()),
+    ("Just a mo, I'll be there.", ()),  # English "a mo": no Tagalog
+])
+def test_taglish_with_bisaya_and_batangas_words_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v78: "halika rine sa sala", "dun ka sa may pintuan sa harap", Bisaya "dayon",
+    "unya", "ug", "pero bago 'yon, …" (but before that) were talk or out of order, and "…, ay,
+    hindi pala, diyan ka na lang" (no, actually: stay there) drove."""
+    assert read_request(text).worded_steps == steps

@@ -25,6 +25,7 @@ CONTACTS = [{"name": "Anna", "relation": "daughter"}, {"name": "Ben", "relation"
         ("weber", "Dr. Weber"), ("the doctor", "Dr. Weber"), ("dr. weber", "Dr. Weber"),
         ("Anna beta", "Anna"), ("Ben ji", "Ben"), ("Clara dear", "Clara"),  # a word of endearment or respect after
         ("Sir Ben", "Ben"), ("Ma'am Anna", "Anna"), ("Auntie Clara", "Clara"),  # a title before (audio test v61)
+        ("Tito Ben", "Ben"), ("Ate Clara", "Clara"), ("Doc Weber", "Dr. Weber"), ("Anna po", "Anna"),  # (text v78)
     ],
 )
 def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:

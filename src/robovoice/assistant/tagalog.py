@@ -17,17 +17,18 @@ import re
 _MARKER = re.compile(r"\b(?:po|naman|nga|lang|muna|tapos|tas|pagkatapos|saka|kaya|punta|pumunta|balik|bumalik|buksan|"
                      r"paki\w+|patayin|isara|tawagan|tawag|salamat|huwag|wag|mamaya|yung|kwarto|kuwarto|banyo|"
                      r"kusina|pasilyo|sige|diba|daw|silipin|tingnan|sundan|lumapit|pagdating|diretso|ngayon|ayan|kasi|"
-                     r"nandun|nandoon|andun|andoon|nandito|andito|uwi|umuwi|daan|dumaan|hinto|huminto|tigil)\b",
+                     r"nandun|nandoon|andun|andoon|nandito|andito|uwi|umuwi|daan|dumaan|hinto|huminto|tigil|halika|"
+                     r"dayon|unya|pintuan|ako|(?:dun|doon|diyan|dyan|dito)\s+ka)\b",
                      re.IGNORECASE)
 
 # what a verb may carry after it: its pronoun and particles ("buksan mo na po yung …")
-_AFTER_VERB = r"(?:\s+(?:mo|mong|nyo|niyo|ninyo|natin|ka|kang|kayo|na|po|naman|nga|lang|daw|muna|agad)\b)*"
+_AFTER_VERB = r"(?:\s+(?:mo|mong|nyo|niyo|ninyo|natin|nato|ka|kang|kayo|na|po|naman|nga|lang|daw|muna|agad|una|ga)\b)*"
 _THE = r"(?:\s+(?:ang|yung|iyong|ng|the)\b)?"
 _CALL_NOUN = r"\s+(?:ang\s+|yung\s+|ng\s+|the\s+)?(?:tawag|call)\b"
 
 _ROOMS = {"sala": "living room", "kusina": "kitchen", "banyo": "bathroom", "cr": "bathroom",
           "comfort room": "bathroom", "kwarto": "bedroom", "kuwarto": "bedroom", "pasilyo": "hallway",
-          "pintuan": "front door", "pinto": "front door"}
+          "pintuan sa harap": "front door", "pintuan": "front door", "pinto": "front door"}
 _ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
 _PLACE = r"((?:the\s+)?(?:living room|front door|charging dock|[a-z]+))"
 
@@ -35,27 +36,36 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     # (text test v76) an English verb made Tagalog: "pa-on naman ng projector", "i-video call mo si Anna"
     (r"\bpa-?(on|off)\b" + _AFTER_VERB + _THE, r"turn \1 the"),
     (r"\bi-(video call|call|charge|text|check|cancel|stop|open|close|end)\b", r"\1"),
-    (r"\bmag-?charge\b", "go charge"),
+    (r"\bmag(?:pa)?-?charge\b", "go charge"),
+    # Bisaya words a Cebuano speaker mixes in (text test v78): dayon, unya (then), ug (and)
+    (r"\b(?:dayon|unya)\b", "then"), (r"\bug\b(?=\s+(?:i-|paki|punta|tawag|buksan|patayin|go|call|turn))", "and"),
+    (r"(^|[.!?,]\s*)una\b", r"\1first"),  # "Una, tawagan mo si Anna, …": first
     # "bago mo tawagan si Clara, …": before you call Clara; "pagdating mo sa …": when you get to the …
     (r"\b(?:bago|before)\s+(?:mo|ka|nyo|niyo)\b", "before you"),
     (r"\bpagdating\b" + _AFTER_VERB + r"\s+sa\b", "when you get to the"),
+    (r"\bbago\s+['\u2019]?(?:yon|iyon|noon|niyan|yan|non)\b", "before that"),
+    (r"\b(?:pumunta|punta|pupunta)\b(?=\s*(?:[,.!?\u2026]|$))", ""),  # the verb said last: "doon ka sa sala pumunta"
     (r"\bpero\s+una\b,?", "but first"), (r"\bpero\b", "but"), (r"\s*,?\s*\bkasi\b", ", because"),
     (r"\b(?:nasaan|saan)\s+(?:ka|kayo)\b", "where are you"), (r"\bkung\b", "if"),
     (r"\bmag-isa\b", "by yourself"), (r"\bngayon\b", "now"),
     (r"\b(?:ayan|ayun)\b[.!,]?", ""),
+    # taken back: "…, ay, hindi pala" (no, actually), "wag na lang", "huwag na" (never mind)
+    (r"\b(?:ay,?\s+)?hindi\s+pala\b|\b(?:h?uwag|wag)\s+na(?:\s+lang)?\b(?=\s*(?:[,.!?\u2026]|$))", "no, never mind"),
     # "para, para!" (what a jeepney's passenger calls out): stop; elsewhere "para" is "so that"
     (r"(^|[.!?,]\s*)para(?=\s*(?:[!,]|$))", r"\1stop"),
+    (r"\s+para\s+(?=(?:ma|mag|maka|makapag|hindi|siya|sila|tayo|ako)\w*)", ", so that "),  # para makita niya …
     # going somewhere: "silipin mo sa front door" (go and look), "lumapit ka dito sa kusina" (come
     # over to), "daan ka sa hallway" (go by), "uwi ka na sa charging dock" (go home to), "diretso ka
     # sa …", "sundan mo ako sa kwarto" (follow me to), "dun ka na lang sa sala" (be in the living room)
     (r"\b(?:silipin|tingnan)\b" + _AFTER_VERB + r"\s+sa\b", "go and check the"),
     (r"\b(?:silipin|tingnan)\b" + _AFTER_VERB, "check"),
+    (r"\b(?:halika|halikayo|hali)\b" + _AFTER_VERB + r"(?:\s+(?:dito|rito|rine|dine))?\s+sa\b", "come to the"),
     (r"\b(?:lumapit|lapit)\b" + _AFTER_VERB + r"(?:\s+(?:dito|rito|diyan|dyan))?\s+sa\b", "come to the"),
     (r"\b(?:dumaan|daan)\b" + _AFTER_VERB + r"\s+sa\b", "go by the"),
     (r"\b(?:umuwi|uwi)\b" + _AFTER_VERB + r"\s+sa\b", "go back to the"),
     (r"\b(?:dumiretso|diretso|tumuloy|tuloy)\b" + _AFTER_VERB + r"\s+sa\b", "go straight to the"),
     (r"\bsundan\b" + _AFTER_VERB + r"\s+ako\s+sa\b", "follow me to the"),
-    (r"\b(?:d?iyan|dyan|doon|dun)\s+(?:ka|kayo)\b" + _AFTER_VERB + r"\s+sa\b", "go to the"),
+    (r"\b(?:d?iyan|dyan|doon|dun)\s+(?:ka|kayo)\b" + _AFTER_VERB + r"\s+sa(?:\s+may)?\b", "go to the"),
     # a room's owner after it: "sa kwarto ni Lola" is the bedroom
     (r"\b(kwarto|kuwarto|bedroom|room|sala)\s+(?:ni|nina)\s+(?:(?:tita|tito|ate|kuya|lola|lolo)\b\s*)?"
      r"(?:(?-i:[A-Z])\w*)?", r"\1"),
@@ -92,7 +102,8 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\b(?:tita|tito|ate|kuya|lola|lolo)\s+(?=(?:Anna|Ben|Clara|Dr|Doctor|Jarvis)\b)", ""),
     (r"\b(?:yung|iyong|ang)\b", "the"),
 ))
-_PARTICLES = re.compile(r"\s*\b(?:po|naman|nga|na|lang|daw|pala|ba|mo|ka|diba|agad)\b", re.IGNORECASE)
+_PARTICLES = re.compile(r"\s*\b(?:po|naman|nga|na|lang|daw|pala|ba|mo|ka|diba|agad|ga|ireng|ire|didto|diri)\b",
+                        re.IGNORECASE)  # "ga", "ireng" (Batangas), "didto" (Bisaya: there)
 
 
 # a part still in Tagalog with its own subject ("…, andun siya", "…, tulog na ko": she's there,
