@@ -168,3 +168,17 @@ def test_a_glasgow_request_or_talk_is_read(text: str, steps: tuple[str, ...]) ->
     """Text test v77: "an" (and) joined two steps into one, "pit", "hing up", "syne" were not
     words the reading knew, and "Ah watch the fitba on it" (I watch) was a request."""
     assert read_request(text).worded_steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Ging ben the hoose tae the kitchie an pit the projector on, min.",
+     ("Go through to the house to the kitchen", "put the projector on")),
+    ("Ye could watch the news on that projector, it's braw.", ()),
+    ("Gyang an see fit she's wintin at the front door.", ("Go see what she's wanting at the front door",)),
+    ("You could switch the projector on.", ("You could switch the projector on",)),  # still a request
+    ("Will it fit through the door?", ()),  # English "fit"
+])
+def test_doric_requests_and_what_anyone_could_do_are_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v79: Doric "ging", "the kitchie", "fit she's wintin" were not words the reading
+    knew, and "ye could watch the Buddies on it" (anyone could) switched the projector on."""
+    assert read_request(text).worded_steps == steps

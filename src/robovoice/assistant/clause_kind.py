@@ -48,9 +48,11 @@ _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^gonnae\b(?! no\b)|^time to\b|^(?:off|away) you go\b|^go and\b|^(?:could|can|may) we (?:have|get)\b|"
     # advice to the robot is a request, not a past it missed ("you ought to charge up", "I think
-    # you'd better ring Clara"; not "you should have seen it", "you must be tired")
+    # you'd better ring Clara"; not "you should have seen it", "you must be tired"), nor what anyone
+    # could do ("ye could watch the Buddies on it", text test v79)
     r"^(?:(?:i think|i reckon|i'd say|maybe|perhaps|probably) )?you(?:'d| had)? (?:can|could|may|should|need to|"
-    r"must|ought to|better|might want to)\b(?!'ve\b| (?:have|be|been)\b)|"
+    r"must|ought to|better|might want to)\b"
+    r"(?!'ve\b| (?:have|be|been)\b| (?:even |just )?(?:watch|enjoy|listen|hear|read)\b)|"
     r"^(?:(?:i think|maybe|perhaps|probably) )?(?:better|best) you (?!than\b)\w+|"  # Singlish advice (text test v70)
     # "I think we can end the call now" (audio test v60; not "we should call Ben more often")
     r"^(?:(?:i think|i guess|i reckon|maybe) )?we (?:can|could|may as well|might as well) (?!have\b|be\b|not\b)\w+"

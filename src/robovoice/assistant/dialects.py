@@ -87,6 +87,8 @@ _SCOTS_WORDS = {
     # (text test v77) "syne come back", "hing up", "haud on", "turn roon", "oor Anna", "yon projector", "bide"
     "syne": "then", "hing": "hang", "haud": "hold", "roon": "round", "oor": "our", "yon": "that", "bide": "stay",
     "awfy": "awful", "wid": "would", "wis": "was", "huv": "have", "dinnae fash": "don't worry",
+    # Doric (text test v79): "ging tae the front door", "the kitchie", "fit she's wintin"
+    "ging": "go", "gyang": "go", "kitchie": "kitchen", "wintin": "wanting", "giein": "giving", "loon": "lad",
 }  # fmt: skip
 _SCOTS_WORD = re.compile(r"\b(" + "|".join(sorted(_SCOTS_WORDS, key=len, reverse=True)) + r")\b(?!['\u2019]\w)",
                          re.IGNORECASE)  # the longest first: "the noo" before "noo"
@@ -107,6 +109,8 @@ _SCOTS = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
      r"|can|will|would|am|was|have|had|said|told|like|love|hate|got|went|know|cannae|dinnae|wid|wis|huv|mean"
      r"|forgot|canna|dinna)\b)", "I"),  # not "Ah go on" (Irish English: go on then) nor "Ah never mind"
     (r"\s*,?\s*\b(?:ye |you )?(?-i:ken)\b(?=\s*(?:[,.!?\u2026]|$))", ""),
+    (r"\s*,\s*(?:min|quine)\b(?=\s*(?:[,.!?\u2026]|$))", ""),  # Doric's "…, min" (man): a tag
+    (r"\bfit\b(?=\s+(?:she's|he's|it's|ye're|you're|they're|is|was|are|like)\b)", "what"),  # Doric's "fit" (what)
     # "ah'm gonnae need ye tae …" asks now, as "I need you to …" does
     (r"\b(?:i'm|i am|i'll|i will)\s+(?:going to\s+|be\s+)?need(?:ing)? you\b", "I need you"),
 
