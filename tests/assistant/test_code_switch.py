@@ -106,3 +106,18 @@ def test_taglish_with_bisaya_and_batangas_words_is_read(text: str, steps: tuple[
     "unya", "ug", "pero bago 'yon, …" (but before that) were talk or out of order, and "…, ay,
     hindi pala, diyan ka na lang" (no, actually: stay there) drove."""
     assert read_request(text).worded_steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Saka mo na buksan ang projector, kumakain pa kami.", ()),
+    ("Pumaroon ka sa kusina at nang makita ko kung may tubig pa.", ("go to the kitchen",)),
+    ("Paandarin mo 'yung projector tsaka i-FaceTime mo si Mommy Clara.",
+     ("turn on the projector", "video call Mommy Clara")),
+    ("Pa-end na ng call, salamat.", ("end the call",)),
+    ("Sige, ibaba mo na yung tawag at saka ka na mag-charge.", ("end the call", "go charge")),  # and then
+])
+def test_quezon_city_taglish_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v80: "saka ka na pumunta sa may pinto" (go there later) drove; "pumaroon",
+    "magtungo", "paandarin", "kontakin", "i-FaceTime", "pa-end", "tsaka" were not words the
+    reading knew."""
+    assert read_request(text).worded_steps == steps

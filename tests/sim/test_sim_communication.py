@@ -26,6 +26,7 @@ CONTACTS = [{"name": "Anna", "relation": "daughter"}, {"name": "Ben", "relation"
         ("Anna beta", "Anna"), ("Ben ji", "Ben"), ("Clara dear", "Clara"),  # a word of endearment or respect after
         ("Sir Ben", "Ben"), ("Ma'am Anna", "Anna"), ("Auntie Clara", "Clara"),  # a title before (audio test v61)
         ("Tito Ben", "Ben"), ("Ate Clara", "Clara"), ("Doc Weber", "Dr. Weber"), ("Anna po", "Anna"),  # (text v78)
+        ("Mommy Anna", "Anna"),  # (text v80)
     ],
 )
 def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:

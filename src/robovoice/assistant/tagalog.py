@@ -15,7 +15,7 @@ from __future__ import annotations
 import re
 
 _MARKER = re.compile(r"\b(?:po|naman|nga|lang|muna|tapos|tas|pagkatapos|saka|kaya|punta|pumunta|balik|bumalik|buksan|"
-                     r"paki\w+|patayin|isara|tawagan|tawag|salamat|huwag|wag|mamaya|yung|kwarto|kuwarto|banyo|"
+                     r"paki\w+|(?:pa|i|mag|magpa)-\w+|patayin|pumaroon|magtungo|paandarin|kontakin|ihinto|puntahan|isara|tawagan|tawag|salamat|huwag|wag|mamaya|yung|kwarto|kuwarto|banyo|"
                      r"kusina|pasilyo|sige|diba|daw|silipin|tingnan|sundan|lumapit|pagdating|diretso|ngayon|ayan|kasi|"
                      r"nandun|nandoon|andun|andoon|nandito|andito|uwi|umuwi|daan|dumaan|hinto|huminto|tigil|halika|"
                      r"dayon|unya|pintuan|ako|(?:dun|doon|diyan|dyan|dito)\s+ka)\b",
@@ -23,25 +23,31 @@ _MARKER = re.compile(r"\b(?:po|naman|nga|lang|muna|tapos|tas|pagkatapos|saka|kay
 
 # what a verb may carry after it: its pronoun and particles ("buksan mo na po yung …")
 _AFTER_VERB = r"(?:\s+(?:mo|mong|nyo|niyo|ninyo|natin|nato|ka|kang|kayo|na|po|naman|nga|lang|daw|muna|agad|una|ga)\b)*"
-_THE = r"(?:\s+(?:ang|yung|iyong|ng|the)\b)?"
+_THE = r"(?:\s+['\u2019]?(?:ang|yung|iyong|ng|the)\b)?"
 _CALL_NOUN = r"\s+(?:ang\s+|yung\s+|ng\s+|the\s+)?(?:tawag|call)\b"
+
+# going: "pumunta ka sa", "pakipunta", "mag-punta", "pumaroon ka sa" (go there to), "magtungo ka sa" (text test v80)
+_GO = r"\b(?:pumunta|punta|pupunta|magpunta|mag-punta|pakipunta|pumaroon|paroon|magtungo|tumungo)\b"
 
 _ROOMS = {"sala": "living room", "kusina": "kitchen", "banyo": "bathroom", "cr": "bathroom",
           "comfort room": "bathroom", "kwarto": "bedroom", "kuwarto": "bedroom", "pasilyo": "hallway",
-          "pintuan sa harap": "front door", "pintuan": "front door", "pinto": "front door"}
+          "pintuan sa harap": "front door", "pintuan": "front door", "pinto": "front door", "silid": "bedroom"}
 _ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
 _PLACE = r"((?:the\s+)?(?:living room|front door|charging dock|[a-z]+))"
 
 _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
     # (text test v76) an English verb made Tagalog: "pa-on naman ng projector", "i-video call mo si Anna"
-    (r"\bpa-?(on|off)\b" + _AFTER_VERB + _THE, r"turn \1 the"),
+    (r"\bpa-?(on|off)\b" + _AFTER_VERB + _THE, r"turn \1 the"), (r"\bpa-?end\b" + _AFTER_VERB + _THE, "end the"),
+    (r"\bpaandarin\b" + _AFTER_VERB + _THE, "turn on the"), (r"\bihinto\b", "stop"),
+    (r"\b(?:kontakin|i-?facetime)\b" + _AFTER_VERB + r"(?:\s+(?:si|kay))?\b", "video call"),
+    (r"\bmag-(drive|go|walk|check)\b", r"\1"),
     (r"\bi-(video call|call|charge|text|check|cancel|stop|open|close|end)\b", r"\1"),
-    (r"\bmag(?:pa)?-?charge\b", "go charge"),
+    (r"\b(?:mag)?(?:pa)?-?charge\b(?=\s+(?:ka|na|po|ba|muna)\b)|\bmag(?:pa)?-?charge\b", "go charge"),
     # Bisaya words a Cebuano speaker mixes in (text test v78): dayon, unya (then), ug (and)
     (r"\b(?:dayon|unya)\b", "then"), (r"\bug\b(?=\s+(?:i-|paki|punta|tawag|buksan|patayin|go|call|turn))", "and"),
     (r"(^|[.!?,]\s*)una\b", r"\1first"),  # "Una, tawagan mo si Anna, …": first
     # "bago mo tawagan si Clara, …": before you call Clara; "pagdating mo sa …": when you get to the …
-    (r"\b(?:bago|before)\s+(?:mo|ka|nyo|niyo)\b", "before you"),
+    (r"\b(?:bago|before)\s+(?:mo|ka|nyo|niyo)\b", "before you"), (r"\bafter\s+(?:mo|ka|nyo|niyo)\b", "after you"),
     (r"\bpagdating\b" + _AFTER_VERB + r"\s+sa\b", "when you get to the"),
     (r"\bbago\s+['\u2019]?(?:yon|iyon|noon|niyan|yan|non)\b", "before that"),
     (r"\b(?:pumunta|punta|pupunta)\b(?=\s*(?:[,.!?\u2026]|$))", ""),  # the verb said last: "doon ka sa sala pumunta"
@@ -77,8 +83,8 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\b(?:patayin|isara|i-off)\b" + _AFTER_VERB + _THE, "turn off the"),
     (r"\bpaki(?:tawag|tawagan)\b" + _AFTER_VERB + r"(?:\s+(?:si|kay|ni))?\b", "please call"),
     (r"\b(?:tawagan|tumawag)\b" + _AFTER_VERB + r"(?:\s+(?:si|kay|ni))?\b", "call"),
-    (r"\b(?:pumunta|punta|pupunta|magpunta)\b" + _AFTER_VERB + r"\s+sa\b", "go to the"),
-    (r"\b(?:pumunta|punta|pupunta|magpunta)\b" + _AFTER_VERB, "go to"),
+    (_GO + _AFTER_VERB + r"\s+sa\b", "go to the"), (_GO + _AFTER_VERB, "go to"),
+    (r"\bpuntahan\b" + _AFTER_VERB + r"(?:\s+(?:si|kay)\s+\w+)?\s+sa\b", "go to the"),  # "puntahan si Lola sa …"
     (r"\b(?:bumalik|balik)\b" + _AFTER_VERB + r"\s+sa\b", "go back to the"),
     (r"\b(?:bumalik|balik)\b" + _AFTER_VERB, "go back to"),
     (r"\b(?:tumigil|tigil|huminto|hinto)\b(?:\s+(?:ka|kayo))?", "stop"),
@@ -88,21 +94,29 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\bsa\s+" + _PLACE + r"\s+(?:ka|kayo)\b", r"go to the \1"),
     (r"\b(?:kaya|marunong)\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "can you"),  # "kaya bang …?": can you …?
     # an English verb with Tagalog's pronoun after it: "call mo si Clara", "cancel mo na yung …"
-    (r"\b(call|ring|cancel|end|open|close|stop|switch|turn)\s+(?:mo|nyo|niyo)\b" + _AFTER_VERB, r"\1"),
+    (r"\b(call|ring|cancel|end|open|close|stop|switch|turn|check|drive|text)\s+(?:mo|nyo|niyo)\b" + _AFTER_VERB,
+     r"\1"),
     (r"\b(?:huwag|wag)\b" + _AFTER_VERB + r"(?:\s+(?:munang|muna))", "don't yet"),
     (r"\b(?:huwag|wag)\b" + _AFTER_VERB, "don't"), (r"\bmamaya(?:ng)?\b", "later"),
     (r"\bbukas\s+(?:na\s+lang|natin)\b", "tomorrow"),  # else "bukas" is open
-    (r"\bpagkatapos(?:\s+(?:ay|nun|non|niyan|noon))?\b|\b(?:at\s+)?saka\b(?:\s+(?:mo|nyo))?|\btapos\b|\btas\b",
+    # "saka ka na pumunta" opening what is said (after a name or "Boss,") is later, not now (text
+    # test v78 drove); after a request, "…, at saka ka na mag-charge" is and then
+    (r"(^|[.!?]\s*)((?:\w+,\s*)?)saka\s+(?:(?:ka|mo|nyo|kayo)\s+)?na\b", r"\1\2later"),
+    (r"\bpagkatapos(?:\s+(?:ay|nun|non|niyan|noon))?\b|\b(?:at\s+)?t?saka\b(?:\s+(?:mo|nyo))?|\btapos\b|\btas\b",
      "then"),
     (r"\b(then|and)\s+sa\b", r"\1 go to the"),  # "tapos sa kusina": then to the kitchen
-    (r"\bat\b(?=\s+(?:go|come|check|call|turn|then|end|stop|please)\b)", "and"),  # Tagalog's "and"
+    (r"\bat\b(?=\s+(?:go|come|check|call|turn|then|end|stop|please|doon|dun|there)\b)", "and"),  # Tagalog "and"
+    (r"\s+at\s+nang\b", ", so that"),  # "…, at nang masilip ko …": so that I can look (talk)
+    (r"\b(?:doon|dun|roon)\s+(?:mo|nyo|niyo)\b", "then"),  # "…, at doon mo tawagan si Ben": and then, there
     (r"\s+\bo\b(?=\s+\w)", ", or"),  # "…, o kailangan pa kitang turuan?": or
     (r"\bmuna\b", "first"), (r"\bsalamat\b", "thanks"), (r"\bsige\b", "okay"),
     (r"\b(?:si|kay|ni)\s+(?:(?:tita|tito|ate|kuya|lola|lolo)\s+)?(?=(?-i:[A-Z]))", ""),  # before a name
     (r"\b(?:tita|tito|ate|kuya|lola|lolo)\s+(?=(?:Anna|Ben|Clara|Dr|Doctor|Jarvis)\b)", ""),
-    (r"\b(?:yung|iyong|ang)\b", "the"),
+    (r"(?<!\w)['\u2019]?(?:yung|iyong|ang)\b", "the"),
+    (r"\b(?:doon|roon|dun|duon)\b", "there"),  # what is left of "doon" (there), not Scots "doon" (down)
 ))
-_PARTICLES = re.compile(r"\s*\b(?:po|naman|nga|na|lang|daw|pala|ba|mo|ka|diba|agad|ga|ireng|ire|didto|diri)\b",
+_PARTICLES = re.compile(r"\s*\b(?:po|naman|nga|na|lang|daw|pala|ba|mo|ka|diba|agad|ga|ireng|ire|didto|diri|aking"
+                        r"|keri)\b",
                         re.IGNORECASE)  # "ga", "ireng" (Batangas), "didto" (Bisaya: there)
 
 

@@ -65,7 +65,7 @@ _LEADING = re.compile(r"^(?:my|the|our)\s+")
 # a title before the name: "Dr. Weber", and a helper's "Sir Ben", "Ma'am Anna" (text test v70, audio v61),
 # a Filipino family's "Tito Ben", "Ate Anna", "Doc Weber" (text test v78)
 _TITLE = re.compile(r"^(?:dr|doctor|doc|dok|mr|mrs|ms|miss|sir|ma am|maam|madam|mister|auntie|aunty|uncle"
-                    r"|tito|tita|kuya|ate|manong|manang|ninong|ninang)\s+")
+                    r"|tito|tita|kuya|ate|manong|manang|ninong|ninang|mommy|mom|mum|mama|daddy|papa)\s+")
 # a word of endearment or respect after the name: "Anna beta", "Ben ji", "Anna dear" (text test v68), "Anna po"
 _ENDEARMENT = re.compile(r"\s+(?:beta|ji|didi|bhaiya|bhai|dear|love|darling|sweetie|po)$")
 
