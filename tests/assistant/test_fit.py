@@ -429,3 +429,18 @@ def test_the_doc_on_the_screen_is_the_call_and_it_looking_back_moves_nothing() -
     assert refusal(said, SPECS["set_projector_power"], {"on": True}, (), VOICE, tools=tools) is not None
     said = read_request("The front door sticks in the heat. Give it a shove.")
     assert refusal(said, SPECS["navigate_to"], {"target": "front door"}, (), VOICE, tools=tools) is not None
+
+
+@pytest.mark.parametrize(("text", "contact"), [
+    ("Let's wrap up the call with Anna now, and after that head into the bedroom.", "Anna"),
+    ("Let's finish the call with Clara.", "Clara"),
+])
+def test_lets_before_the_ends_words_ends_the_call_and_starts_none(text: str, contact: str) -> None:
+    """Text test v81: "Let's wrap up the call with Anna now, …" (in a call) started a call with
+    her: the end's "wrap up" did not open the clause, "let's" did."""
+    intent = read_request(text)
+    body = refusal(intent, SPECS["start_video_call"], {"contact": contact}, (), VOICE, tools=list(SPECS.values()))
+    assert body is not None and body["error"] == NOT_REQUESTED
+    assert refusal(intent, SPECS["end_video_call"], {}, (), VOICE, tools=list(SPECS.values())) is None
+    assert refusal(read_request(f"Let's call {contact}."), SPECS["start_video_call"], {"contact": contact}, (),
+                   VOICE, tools=list(SPECS.values())) is None

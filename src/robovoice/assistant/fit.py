@@ -105,7 +105,8 @@ def names(sentence: str, name: str, arguments: Mapping[str, Any], declared: Sequ
 
 
 # The courtesy a request may open with, before its verb: "could you please hang up the call"
-_COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|you|go ahead and)\b[\s,]*)+"
+_COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|you|go ahead and|let'?s|let us)"
+                       r"(?!\w)[\s,]*)+"  # "let's wrap up the call with Anna": the end's words open it (text v81)
                        # "… be kind enough to call Ben": no "enough" of the stop's words
                        r"|\bbe (?:so |ever so )?(?:kind|good) (?:enough )?(?:as )?(?=to\b)", re.IGNORECASE)
 
