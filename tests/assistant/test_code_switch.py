@@ -115,6 +115,7 @@ def test_taglish_with_bisaya_and_batangas_words_is_read(text: str, steps: tuple[
      ("turn on the projector", "video call Mommy Clara")),
     ("Pa-end na ng call, salamat.", ("end the call",)),
     ("Sige, ibaba mo na yung tawag at saka ka na mag-charge.", ("end the call", "go charge")),  # and then
+    ("Marunong ka bang mag-video call sa Dubai?", ()),  # knows how: an ability asked (reading diff)
 ])
 def test_quezon_city_taglish_is_read(text: str, steps: tuple[str, ...]) -> None:
     """Text test v80: "saka ka na pumunta sa may pinto" (go there later) drove; "pumaroon",

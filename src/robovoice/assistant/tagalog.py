@@ -40,7 +40,7 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\bpa-?(on|off)\b" + _AFTER_VERB + _THE, r"turn \1 the"), (r"\bpa-?end\b" + _AFTER_VERB + _THE, "end the"),
     (r"\bpaandarin\b" + _AFTER_VERB + _THE, "turn on the"), (r"\bihinto\b", "stop"),
     (r"\b(?:kontakin|i-?facetime)\b" + _AFTER_VERB + r"(?:\s+(?:si|kay))?\b", "video call"),
-    (r"\bmag-(drive|go|walk|check)\b", r"\1"),
+    (r"\bmag-(drive|go|walk|check|video call|call)\b", r"\1"),
     (r"\bi-(video call|call|charge|text|check|cancel|stop|open|close|end)\b", r"\1"),
     (r"\b(?:mag)?(?:pa)?-?charge\b(?=\s+(?:ka|na|po|ba|muna)\b)|\bmag(?:pa)?-?charge\b", "go charge"),
     # Bisaya words a Cebuano speaker mixes in (text test v78): dayon, unya (then), ug (and)
@@ -92,7 +92,8 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\b(?:d?iyan|dyan|doon|dun|dito)\s+(?:ka|kayo)\b", "stay there"),
     # "sa bedroom ka na lang": be in the bedroom instead ("sa hallway ka muna": that first)
     (r"\bsa\s+" + _PLACE + r"\s+(?:ka|kayo)\b", r"go to the \1"),
-    (r"\b(?:kaya|marunong)\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "can you"),  # "kaya bang …?": can you …?
+    (r"\bkaya\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "can you"),
+    (r"\bmarunong\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "do you know how to"),  # an ability asked  # "kaya bang …?": can you …?
     # an English verb with Tagalog's pronoun after it: "call mo si Clara", "cancel mo na yung …"
     (r"\b(call|ring|cancel|end|open|close|stop|switch|turn|check|drive|text)\s+(?:mo|nyo|niyo)\b" + _AFTER_VERB,
      r"\1"),
