@@ -92,8 +92,8 @@ _RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
     (r"\b(?:d?iyan|dyan|doon|dun|dito)\s+(?:ka|kayo)\b", "stay there"),
     # "sa bedroom ka na lang": be in the bedroom instead ("sa hallway ka muna": that first)
     (r"\bsa\s+" + _PLACE + r"\s+(?:ka|kayo)\b", r"go to the \1"),
-    (r"\bkaya\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "can you"),
-    (r"\bmarunong\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "do you know how to"),  # an ability asked  # "kaya bang …?": can you …?
+    (r"\bkaya\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "can you"),  # "kaya bang …?": can you …?
+    (r"\bmarunong\b(?:\s+(?:mo|ka|po|naman|na)\b)*\s+ba(?:ng)?\b", "do you know how to"),  # knows how: an ability
     # an English verb with Tagalog's pronoun after it: "call mo si Clara", "cancel mo na yung …"
     (r"\b(call|ring|cancel|end|open|close|stop|switch|turn|check|drive|text)\s+(?:mo|nyo|niyo)\b" + _AFTER_VERB,
      r"\1"),
