@@ -182,3 +182,16 @@ def test_doric_requests_and_what_anyone_could_do_are_read(text: str, steps: tupl
     """Text test v79: Doric "ging", "the kitchie", "fit she's wintin" were not words the reading
     knew, and "ye could watch the Buddies on it" (anyone could) switched the projector on."""
     assert read_request(text).worded_steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Get thisen to t'kitchen, then switch t'projector on.",
+     ("Get yourself to the kitchen", "switch the projector on")),
+    ("Ring Clara... nah, scrap it, she'll be asleep by now.", ()),
+    ("go to the bathroom... scrap that, i'll go myself", ()),
+    ("I don't want owt, thanks.", ()),
+])
+def test_yorkshire_requests_and_a_scrapped_one_are_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text test v82: "go to t'bedroom, then t'bathroom, …" did one step or none ("t'" is "the"),
+    and "go to the bathroom... nah scrap that, i'll go myself" drove ("scrap that" took nothing back)."""
+    assert read_request(text).worded_steps == steps

@@ -1,5 +1,5 @@
 """Turns of a dialect of English said as standard English says them, before the reading:
-Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese and Scots English.
+Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese, Scots and Yorkshire English.
 
 Only what the reading needs is rewritten (requests, negations, particles, order words); the
 model still reads the person's own words. Each rule says which blind set showed it; words that
@@ -123,6 +123,14 @@ _SCOTS = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
 ))
 
 
+# Yorkshire English (text test v82): "go t'bedroom", "get thisen to t'living room", "will tha?",
+# "get back on thi charger"
+_YORKSHIRE = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+    (r"\bt['\u2019](?=[a-z])", "the "), (r"\bth[iy]sen\b", "yourself"), (r"\bthi\b", "your"),
+    (r"\btha\b", "you"), (r"\bnowt\b", "nothing"), (r"\bowt\b", "anything"), (r"\bsummat\b", "something"),
+))
+
+
 def _scots(text: str) -> str:
     def word(m: re.Match[str]) -> str:
         english = _SCOTS_WORDS[m.group(1).lower()]
@@ -140,6 +148,8 @@ def as_standard(text: str) -> str:
     text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
     text = _CAN_OR_NOT.sub(r"\1can you \2", text)
     text = _scots(_maltese(text))
+    for pattern, english in _YORKSHIRE:
+        text = pattern.sub(english, text)
     for pattern, english in _PATOIS:  # before the dropped g: "an'" is "and", not "ang"
         text = pattern.sub(english, text)
     text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))
