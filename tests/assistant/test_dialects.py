@@ -190,6 +190,7 @@ def test_doric_requests_and_what_anyone_could_do_are_read(text: str, steps: tupl
     ("Ring Clara... nah, scrap it, she'll be asleep by now.", ()),
     ("go to the bathroom... scrap that, i'll go myself", ()),
     ("I don't want owt, thanks.", ()),
+    ("Could you take the tray to the kitchen, or you just drive about?", ()),  # asks what it can do (text v83)
 ])
 def test_yorkshire_requests_and_a_scrapped_one_are_read(text: str, steps: tuple[str, ...]) -> None:
     """Text test v82: "go to t'bedroom, then t'bathroom, …" did one step or none ("t'" is "the"),

@@ -321,7 +321,9 @@ _ASIDE = re.compile(r"^(?:i'?m|i am|i was|i've|my (?:memory|head|brain|mind)|wha
 _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 # "can you call the surgery, or only Dr. Weber?"; "could you dim it, or is it just on and off?" (text test v68)
-_OR_ONLY = re.compile(r"^or (?:(?:is it|are you|do you|can you|does it|can it) )?(?:only|just|merely)\b", re.IGNORECASE)
+# "can you carry the basket to the bedroom, or you only move yourself?" (text test v83)
+_OR_ONLY = re.compile(r"^or (?:(?:is it|are you|do you|can you|does it|can it|you|it) )?(?:only|just|merely)\b",
+                      re.IGNORECASE)
 _SOMEONES = re.compile(r"^\s+(?:[A-Z]\w+|my \w+|the \w+)'s\b")  # "… see Anna's recipe": hers, not her
 _SEEN = re.compile(r"^\s+(?:something|it|that|this|them|the|a|an|my|our|some|what|how)\b")  # "… see something": a look
 # All that is left of a clause after the fillers, said after a bare place: "Bedroom. Now, please."
