@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.dialects import as_standard
+from robovoice.assistant.dialects import as_standard, rewrite, rules
 from robovoice.assistant.tagalog import from_tagalog
 
 # Hindi's "switch off" and "switch on", said after the thing in Indian English (text test v68)
@@ -42,7 +42,7 @@ _ROOM = re.compile(r"\b(?:(the\s+)|(?:el|la)\s+)?(" + "|".join(sorted(_ROOMS, ke
 _ANY_SPANISH = re.compile("|".join([_VERB, r"\b(?:después|despues|luego|primero|por favor)\b"]), re.IGNORECASE)
 _YA = re.compile(r"\bya\b", re.IGNORECASE)
 
-_SPANISH = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+_SPANISH = rules((
     (r"\by\s+(?=(?:" + _VERB + r")\b)", "and "),  # "… y llama a Ben" (before the verb is in English)
     (_GO + r"\s+al\b", "go to the"), (_GO + r"\s+a\b", "go to"),
     (_BACK + r"\s+al\b", "go back to the"), (_BACK + r"\s+a\b", "go back to"),
@@ -60,8 +60,7 @@ def in_english(text: str) -> str:
     and a dialect's turns said as standard English says them (`dialects.as_standard`)."""
     text = as_standard(_HINDI_OFF.sub("off", _HINDI_ON.sub("on", from_tagalog(text))))  # "Projector band karo": off
     spanish = bool(_ANY_SPANISH.search(text))
-    for pattern, english in _SPANISH:
-        text = pattern.sub(english, text)
+    text = rewrite(text, _SPANISH)
     if not spanish:
         return text
     text = _YA.sub("now", text)  # "ya terminamos": Spanish's "now", not texting's "you"

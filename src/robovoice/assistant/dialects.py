@@ -9,6 +9,23 @@ are also English words are rewritten only where the dialect's use is unmistakabl
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
+
+Rules = tuple[tuple[re.Pattern[str], str], ...]
+
+
+def rules(pairs: Iterable[tuple[str, str]]) -> Rules:
+    """Each (pattern, English) pair compiled, case-insensitive: the table a language's or a
+    dialect's turns are written in (here, and in `tagalog` and `code_switch`)."""
+    return tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in pairs)
+
+
+def rewrite(text: str, table: Rules) -> str:
+    """`text` with each rule of `table` applied in order: a later rule reads what an earlier wrote."""
+    for pattern, english in table:
+        text = pattern.sub(english, text)
+    return text
+
 
 # Singlish (text test v70): its particles say nothing asked ("Off the projector lah"); "X can or
 # not?" is "can you X?"; "see got water on the floor or not" is "see if there is …"; "go toilet"
@@ -92,7 +109,7 @@ _SCOTS_WORDS = {
 }  # fmt: skip
 _SCOTS_WORD = re.compile(r"\b(" + "|".join(sorted(_SCOTS_WORDS, key=len, reverse=True)) + r")\b(?!['\u2019]\w)",
                          re.IGNORECASE)  # the longest first: "the noo" before "noo"
-_SCOTS = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+_SCOTS = rules((
     (r"(^|[.!?,;\u2026]\s*)gonnae no\b", r"\1please don't"), (r"(^|[.!?,;\u2026]\s*)gonnae\b", r"\1will you"),
     (r"\bgonnae\b", "going to"),
     (r"\b(away|go|come|get|head|nip|gang)((?:\s+back)?)\s+(?-i:ben)(?:\s+to)?\b", r"\1\2 through to"),
@@ -125,7 +142,7 @@ _SCOTS = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, englis
 
 # Yorkshire English (text test v82): "go t'bedroom", "get thisen to t'living room", "will tha?",
 # "get back on thi charger"
-_YORKSHIRE = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+_YORKSHIRE = rules((
     (r"\bt['\u2019](?=[a-z])", "the "), (r"\bth[iy]sen\b", "yourself"), (r"\bthi\b", "your"),
     (r"\btha\b", "you"), (r"\bnowt\b", "nothing"), (r"\bowt\b", "anything"), (r"\bsummat\b", "something"),
 ))
@@ -136,22 +153,15 @@ def _scots(text: str) -> str:
         english = _SCOTS_WORDS[m.group(1).lower()]
         return english.capitalize() if m.group(1)[0].isupper() else english
 
-    text = _SCOTS_WORD.sub(word, text)
-    for pattern, english in _SCOTS:  # after the words: "the noo" is "the now", then "now"
-        text = pattern.sub(english, text)
-    return text
+    return rewrite(_SCOTS_WORD.sub(word, text), _SCOTS)  # after the words: "the noo" is "the now", then "now"
 
 
 def as_standard(text: str) -> str:
-    """`text` with the turns of Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese and
-    Scots English said as standard English says them."""
+    """`text` with the turns of Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese, Scots
+    and Yorkshire English said as standard English says them."""
     text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
     text = _CAN_OR_NOT.sub(r"\1can you \2", text)
-    text = _scots(_maltese(text))
-    for pattern, english in _YORKSHIRE:
-        text = pattern.sub(english, text)
-    for pattern, english in _PATOIS:  # before the dropped g: "an'" is "and", not "ang"
-        text = pattern.sub(english, text)
+    text = rewrite(rewrite(_scots(_maltese(text)), _YORKSHIRE), _PATOIS)  # Patois before the dropped g: "an'"
     text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))
     return _OPEN.sub(lambda m: f"turn {'on' if m.group(1).lower() == 'open' else 'off'} the {m.group(2)}",
                      _CHEER.sub("", text))

@@ -14,8 +14,11 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.dialects import rewrite, rules
+
 _MARKER = re.compile(r"\b(?:po|naman|nga|lang|muna|tapos|tas|pagkatapos|saka|kaya|punta|pumunta|balik|bumalik|buksan|"
-                     r"paki\w+|(?:pa|i|mag|magpa)-\w+|patayin|pumaroon|magtungo|paandarin|kontakin|ihinto|puntahan|isara|tawagan|tawag|salamat|huwag|wag|mamaya|yung|kwarto|kuwarto|banyo|"
+                     r"paki\w+|(?:pa|i|mag|magpa)-\w+|patayin|pumaroon|magtungo|paandarin|kontakin|ihinto|"
+                     r"puntahan|isara|tawagan|tawag|salamat|huwag|wag|mamaya|yung|kwarto|kuwarto|banyo|"
                      r"kusina|pasilyo|sige|diba|daw|silipin|tingnan|sundan|lumapit|pagdating|diretso|ngayon|ayan|kasi|"
                      r"nandun|nandoon|andun|andoon|nandito|andito|uwi|umuwi|daan|dumaan|hinto|huminto|tigil|halika|"
                      r"dayon|unya|pintuan|ako|(?:dun|doon|diyan|dyan|dito)\s+ka)\b",
@@ -35,7 +38,7 @@ _ROOMS = {"sala": "living room", "kusina": "kitchen", "banyo": "bathroom", "cr":
 _ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
 _PLACE = r"((?:the\s+)?(?:living room|front door|charging dock|[a-z]+))"
 
-_RULES = tuple((re.compile(pattern, re.IGNORECASE), english) for pattern, english in (
+_RULES = rules((
     # (text test v76) an English verb made Tagalog: "pa-on naman ng projector", "i-video call mo si Anna"
     (r"\bpa-?(on|off)\b" + _AFTER_VERB + _THE, r"turn \1 the"), (r"\bpa-?end\b" + _AFTER_VERB + _THE, "end the"),
     (r"\bpaandarin\b" + _AFTER_VERB + _THE, "turn on the"), (r"\bihinto\b", "stop"),
@@ -133,8 +136,7 @@ def from_tagalog(text: str) -> str:
     """`text` with the Tagalog of a Taglish request put in English (unchanged without Tagalog)."""
     if not _MARKER.search(text):
         return text
-    for pattern, english in _RULES:
-        text = pattern.sub(english, text)
+    text = rewrite(text, _RULES)
     text = _PARTICLES.sub("", _TALK.sub(lambda m: m.group(0) if _ASKS.search(m.group(0)) else "", text))
     text = _ROOM.sub(lambda m: _ROOMS[m.group(1).lower()], text)
     return re.sub(r"\bthe the\b", "the", re.sub(r"\bto (?=(?:kitchen|bedroom|bathroom|hallway|living room)\b)",
