@@ -15,7 +15,8 @@ from robovoice.assistant.intent import read_request
     ("Ve al cuarto", "go to the bedroom"),  # one "the", not two
     ("Regresa a la sala y luego llama a Anna.", "go back to the living room and then call Anna."),
     ("Turn on the projector y llama a Ben", "Turn on the projector and call Ben"),
-    ("Projector band karo", "Projector off"),
+    ("Projector band karo", "turn off the Projector"),
+    ("Light band karo", "Light off"),
     # English words that look like the Spanish ones stay as they are
     ("I've got a llama at the farm", "I've got a llama at the farm"),
     ("The sala is my favourite room", "The sala is my favourite room"),  # no Spanish request said

@@ -66,8 +66,10 @@ _AWAY_AND = re.compile(r"(?:(?<=^)|(?<=[,.;!?] ))away\s+and\s+(?=\w)", re.IGNORE
 _GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|also\b|afterwards\b)", re.IGNORECASE)
 
 
-# "would you be a dear and pop into the kitchen": courtesy around one request
-_BE_A_DEAR = re.compile(r"\bbe (?:a (?:dear|love|darling|pet|sweetheart|star|treasure|gem)|an angel|good) and\s+",
+# "would you be a dear and pop into the kitchen", "please be so kind as to come to the living room"
+# (text test v82): courtesy around one request
+_BE_A_DEAR = re.compile(r"\bbe (?:a (?:dear|love|darling|pet|sweetheart|star|treasure|gem)|an angel|good) and\s+|"
+                        r"\bbe (?:so kind as|kind enough|good enough|so good as) to\s+",
                         re.IGNORECASE)
 
 

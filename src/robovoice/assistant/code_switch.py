@@ -13,6 +13,8 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.dialects import as_standard, rewrite, rules
+from robovoice.assistant.hindi import from_hindi
+from robovoice.assistant.swahili import from_swahili
 from robovoice.assistant.tagalog import from_tagalog
 
 # Hindi's "switch off" and "switch on", said after the thing in Indian English (text test v68)
@@ -58,7 +60,8 @@ _SPANISH = rules((
 def in_english(text: str) -> str:
     """`text` with the requests, order words and rooms said in Tagalog, Hindi or Spanish put in English,
     and a dialect's turns said as standard English says them (`dialects.as_standard`)."""
-    text = as_standard(_HINDI_OFF.sub("off", _HINDI_ON.sub("on", from_tagalog(text))))  # "Projector band karo": off
+    text = from_swahili(from_hindi(from_tagalog(text)))
+    text = as_standard(_HINDI_OFF.sub("off", _HINDI_ON.sub("on", text)))  # "Light band karo": off
     spanish = bool(_ANY_SPANISH.search(text))
     text = rewrite(text, _SPANISH)
     if not spanish:

@@ -94,6 +94,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     condition = corrected = False  # after "if Ben rings, …" / after "…, no, …"
     undone: list[int] = []  # the requests a bare "no" just took back: a "not Ben" after it says which
     front: int | None = None  # where the next request goes: "…, but before that, …" puts it first
+    held: int | None = None  # "before you ring Ben, …": the call, after the requests said before it
     when_only = False  # after "Later on, after lunch, …": what follows is postponed too
     conditioned: int | None = None  # the request right before a condition ("would you ring Ben, if I fell?")
     amending = False  # right after a bare "sorry" or "I mean" (amend)
@@ -158,7 +159,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if (first_said := before_you(bare)) and classify(first_said) is ClauseKind.REQUEST:
             # "before you ring Clara, put the projector on": the call comes after what follows
             clauses.append(Clause(first_said, ClauseKind.REQUEST))
-            front = len(clauses) - 1
+            front = held = len(clauses) - 1
             continue
         if kind is ClauseKind.REQUEST and undone and FIRST.search(part.strip()) and not fragment(part):
             # "ring Anna — oh wait, no, go to the bedroom first": not instead of the call, before it
@@ -287,8 +288,13 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             # withdrawn; never a stop ("Stop, stop! Cancel that and …" cancels the drive: text test v34)
             kind, undone, corrected = ClauseKind.NEGATED, asked_before, bool(asked_before)
             clauses = [Clause(c.text, ClauseKind.NEGATED) if i in undone else c for i, c in enumerate(clauses)]
+        if held is not None and front is None and kind is ClauseKind.REQUEST and fragment(part):
+            # "before you call Ben, go to the front door, and after that to the living room": a place more
+            # for the drive said first; a request of its own ("…, and afterwards go and charge") comes after
+            front = held
         if front is not None and kind in (ClauseKind.REQUEST, ClauseKind.QUESTION):
             clauses.insert(front, Clause(part, kind))
+            held = held + 1 if held is not None and front <= held else held
             front = None
             continue
         clauses.append(Clause(part, kind))

@@ -1,0 +1,132 @@
+"""Hindi, Urdu and Punjabi, written in Latin letters inside English speech: the requests, order
+words, negations and rooms put in English, for the reading only (text test v82: "kitchen tak jao
+zara", "Pehle projector chalao, phir Anna ko video call milao", "Ruk ja, ruk ja! … wapas kitchen
+aa ja" were talk; "Call na kaatna beta" started a call).
+
+Hindustani puts the verb last ("Anna ko call karo": Anna-to call do), so each rule reads the
+thing, then the verb, and writes the English request verb first. A negation ("mat", "na",
+"nahin") said before a verb makes its clause "don't …"; "… sakte ho?" makes it "can you …?".
+Nothing is rewritten unless a word only Hindustani has was said (`_MARKER`): "to", "par", "me"
+and "bus" are English words too.
+"""
+
+from __future__ import annotations
+
+import re
+
+from robovoice.assistant.dialects import rewrite, rules
+
+_MARKER = re.compile(r"\b(?:karo|kardo|kar\s+(?:do|de|dein|dijiye|dena|lo)|karna|karein|kijiye|jao|jaao|jaiye|"
+                     r"chalao|chala\s+(?:do|de|dein)|chalo|milao|mila\s+(?:do|de|dein)|lagao|laga\s+(?:do|de|dein)|"
+                     r"bulao|ruko|ruk\s+ja\w*|rukiye|pehle|pahle|pehlan|phir|uske|iske|nahin|nahi|zara|jaldi|kya|hai|"
+                     r"hain|aao|aaja|aa\s+ja|wapas|vapas|abhi|khatam|kaat\w*|bujha\w*|chalu|puttar|"
+                     r"wahan|udhar|idhar|sakte|sakti|sakta|shaam)\b",
+                     re.IGNORECASE)
+# an infinitive said with "hai" is a need ("mujhe bathroom jaana hai": I have to go), a "raha" an
+# ongoing thing ("woh ghar ja rahi hai"): neither asks the robot
+_NOT_ASKED = r"(?!\s+(?:hai|hain|tha|thi|hoga|hogi|padega|padegi|chahiye|raha|rahi|rahe|chuka|chuki|chuke))"
+
+_GIVE = r"(?:\s+(?:do|de|dein|den|dijiye|dijie|dena|diyo|lo|lein|na))?"
+_DO = r"(?:karo|kardo|karde|karna|karein|karen|kijiye|kar" + _GIVE + r")"
+_DO = "(?:" + _DO + ")" + _NOT_ASKED
+# what follows the thing before the verb: a postposition, "bhi" (too), "ek" (a)
+_POST = (r"(?:\s+(?:ko|nu|noo|se|tak|mein|me|main|vich|wich|pe|par|ki\s+taraf|ke\s+paas|bhi|ek|zara|jaldi|abhi|"
+         r"turant|fauran|please))*")
+_PLACE = (r"((?:the\s+)?(?:living room|front door|charging dock|drawing room|"
+          r"(?!(?:aa|ja|jaa|chale|wapas|vapas)\b)[a-z]+))")
+# someone to call: a title and a name, or a pronoun ("usko": him, her)
+# (what is said of them before is left out: "saath wali Clara", the Clara next door; "meri beti Anna")
+_WHO = (r"(?:(?:saath|bagal|padosi|padosan|meri|mera|mere|apni|apne|apna|wali|wala|vali|vala|beti|beta)\s+)*"
+        r"((?:(?:doctor|dr\.?|uncle|aunty|auntie|nani|dadi|nana|dada|didi|bhaiya|chacha|chachi|mama|mami|bua|"
+        r"masi|mausi|phuphi)\s+)?(?!(?:ko|nu|se|bhi|ji|jee)\b)\w+)(?:\s+(?:sahib|saab|sahab|ji|jee))?")
+_CALL_NOUN = r"(?:video\s+wala\s+phone|video\s+call|video|phone|call)(?:\s+(?:pe|par))?"
+_CONNECT = r"(?:milao|mila" + _GIVE + r"|milana|milaiye|lagao|laga" + _GIVE + r"|lagana|lagaiye|bulao|bula" + \
+    _GIVE + r"|bulana|bulaiye|la" + _GIVE + r")"
+_CONNECT = "(?:" + _CONNECT + ")" + _NOT_ASKED
+_ON = (r"(?:chalao|chala" + _GIVE + r"|chalana|chalaiye|lagao|laga" + _GIVE + r"|lagana|jalao|jala" + _GIVE +
+       r"|kholo|khol" + _GIVE + r"|(?:chalu|chaalu|on|start)\s+" + _DO + r")")
+_ON = "(?:" + _ON + ")" + _NOT_ASKED
+_OFF = r"(?:bujhao|bujha" + _GIVE + r"|(?:band|bandh|bund|off)\s+" + _DO + r"|hatao|hata" + _GIVE + r")"
+_OFF = "(?:" + _OFF + ")" + _NOT_ASKED
+_END = (r"(?:khatam\s+" + _DO + r"|kaato|kato|kaat" + _GIVE + r"|kaatna|katna|cut\s+" + _DO +
+        r"|band\s+" + _DO + r"|rakh" + _GIVE + r"|rakho)")
+_END = "(?:" + _END + ")" + _NOT_ASKED
+_GO = r"(?:(?:chale\s+)?(?:jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa)|chalo|chaliye|chal)"
+_GO = "(?:" + _GO + ")" + _NOT_ASKED
+_COME = r"(?:aao|aaiye|aa\s+jao|aa\s+ja|aaja|aajao|aa\s+jaiye|aana|aaja)"
+_COME = "(?:" + _COME + ")" + _NOT_ASKED
+_VERB_WORD = r"(?:\w+(?:o|na|iye|ein|en|ao)|kar|ja|jaa|aa|chal|ruk|la)\b"
+
+_RULES = rules((
+    # "… sakte ho?": can you …? (the verb's stem, said as an order after "can you")
+    (r"(^|[.!?,;]\s*)([^.!?,;]*?)\b(\w+)\s+(?:sakte|sakti|sakta|sakoge|sakogi|sakenge)\b"
+     r"(?:\s+(?:ho|hain|hai|hoon|hun))?(?:\s+(?:tum|aap))?(?:\s+kya)?", r"\1can you \2\3o"),
+    (r"\b(?:kya|kyaa)\s+(?:tum|aap)\b", ""), (r"(^|[.!?,;]\s*)kya\b", r"\1"),
+    # "Udhar nahin" (not there), "abhi nahin" (not now)
+    (r"\b(?:udhar|wahan|wahaan|idhar|yahan)\s+(?:nahin|nahi|nai)\b", "not there"),
+    (r"\babhi\s+(?:nahin|nahi|nai)\b", "not now"),
+    # a negation before the verb: the clause is "don't …" ("Call na kaatna", "Anna ko call mat karna")
+    (r"(^|[.!?,;]\s*|\b(?:aur|phir|par|lekin)\s+)([^.!?,;]*?)\b(?:mat|na|nahin|nahi|nai)\s+"
+     r"(?=(?:\w+\s+)?" + _VERB_WORD + r")", r"\1don't \2"),
+    (r"\b(?:bas\s+)?pooch\s+(?:raha|rahi|rahe)\s+(?:hoon|hun|hu|tha|thi)\b", "I'm only asking"),
+    (r"\b(?:ruko|ruk\s+jao|ruk\s+ja|rukiye|ruk\s+jaiye|ruk|thamo|tham\s+jao)\b", "stop"),
+    # a call ended: "call khatam karo", "phone rakh do"
+    (r"\b(?:yeh|ye|woh|wo|is|ab)?\s*\b(?:call|phone)\s+(?:ko\s+)?" + _END + r"\b", " end the call"),
+    # a call made: "Anna ko video call milao", "Anna nu video wala phone la de", "Clara ko video pe bulao"
+    (r"\b(?:us|usko|use|unko|unhe|inko)\s+" + _POST.replace("ko|", "") + r"\s*(?:" + _CALL_NOUN + r"\s+)?(?:" + _DO +
+     r"|" + _CONNECT + r")\b", "call them"),
+    (r"\b" + _WHO + _POST + r"\s+" + _CALL_NOUN + r"\s+(?:" + _DO + r"|" + _CONNECT + r")\b", r"video call \1"),
+    (r"\b" + _WHO + r"\s+(?:ko|nu)(?:\s+bhi)?\s+" + _CONNECT + r"\b", r"video call \1"),
+    (r"\b" + _CALL_NOUN + r"\s+(?:" + _DO + r"|" + _CONNECT + r")\s+" + _WHO + r"\s+(?:ko|nu)\b", r"video call \1"),
+    # the projector: "projector chalao", "projector baad mein lagana", "projector bujha do"
+    (r"\b(projector|tv|it)\s+(?:ko\s+)?((?:\w+\s+){0,2}?)" + _ON + r"\b", r"turn on the \1 \2"),
+    (r"\b(projector|tv|it)\s+(?:ko\s+)?((?:\w+\s+){0,2}?)" + _OFF + r"\b", r"turn off the \1 \2"),
+    # charging: "charge pe lag jao", "charger pe chale jao"
+    (r"\b(?:charging|charge|charger)\s+(?:pe|par|ke\s+liye)?\s*(?:lag\s+jao|lago|ho\s+jao|lag\s+ja|" + _DO + r"|"
+     + _GO + r")\b", "go charge"),
+    # going and coming: "kitchen tak jao", "wapas kitchen aa ja", "bedroom chalo"
+    (r"\b(?:wapas|vapas|waapas)\s+" + _PLACE + _POST + r"\s+(?:" + _GO + "|" + _COME + r")\b", r"go back to the \1"),
+    (r"\b" + _PLACE + _POST + r"\s+" + _COME + r"\b", r"come to the \1"),
+    (r"\b" + _PLACE + _POST + r"\s+" + _GO + r"\b", r"go to the \1"),
+    (r"\b(?:wapas|vapas)\s+" + _GO + r"\b", "go back"), (r"\b(?:wapas|vapas)\s+" + _COME + r"\b", "come back"),
+    # when you get there: "wahan pohonch ke"
+    (r"\b(?:wahan|wahaan|vahan)\s+(?:pohonch|pahunch|pohanch|pahonch)\s*(?:ke|kar|kar\s+ke)\b", "once you get there,"),
+    # order words and time
+    (r"\b(?:aur\s+)?(?:phir|fir|pher|fer|uske\s+baad|iske\s+baad|us\s+ke\s+baad|baad\s+vich)\b", "then"),
+    (r"\b(?:pehle|pahle|pehlan|pehla)\b", "first"), (r"\baur\b", "and"),
+    (r"\b(?:baad\s+mein|baad\s+me|baad\s+main|thodi\s+der\s+(?:mein|baad))\b", "later"),
+    (r"\baaj\s*kal\b", "these days"), (r"\bkal\b", "tomorrow"), (r"\bshaam\s+ko\b", "this evening"),
+    (r"\b(?:abhi|hun|hune)\b", "now"),
+    (r"\bjaldi(?:\s+(?:jaldi|se))?\b", "quickly"),
+    (r"\b(?:kitchen|rasoi|rasoi\s*ghar)\s+(?=\s*(?:[,.!?]|$))", "the kitchen"),
+))
+_ROOMS = {"rasoi ghar": "kitchen", "rasoighar": "kitchen", "rasoi": "kitchen", "baithak": "living room",
+          "drawing room": "living room", "kamre": "bedroom", "kamra": "bedroom", "ghusalkhana": "bathroom",
+          "gusalkhana": "bathroom", "darwaza": "front door", "darwaze": "front door", "darwaaze": "front door",
+          "charger": "charging dock"}
+_ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
+# what a request carries that says nothing asked: particles, "beta" (child), "ji", "zara" (just)
+# ("Priya beta, …" is said to Priya, and stays as said)
+_PARTICLES = re.compile(r"(\b(?-i:[A-Z])\w*)?\s*\b(?:zara|ji|jee|beta|puttar|yaar|bhai|bhaiya|na|toh|bhi|sahib|saab|"
+                        r"please\s+na)\b(?=\s*(?:[,.!?]|$|\s))", re.IGNORECASE)
+
+
+def _particle(m: re.Match[str]) -> str:
+    """Nothing for a particle, unless it follows a name that opens a clause ("Priya beta, …"): then
+    it says who is spoken to."""
+    name = m.group(1)
+    opens = name is not None and re.search(r"(?:^|[.!?,;]\s*)$", m.string[:m.start(1)]) is not None
+    return m.group(0) if opens and name.lower() not in _NOT_NAMES else (name or "")
+
+
+_NOT_NAMES = frozenset({"arre", "arey", "acha", "accha", "achha", "haan", "chalo", "please", "suno", "oye", "bas"})
+
+
+def from_hindi(text: str) -> str:
+    """`text` with the Hindi, Urdu or Punjabi of a request put in English (unchanged without any)."""
+    if not _MARKER.search(text):
+        return text
+    text = _ROOM.sub(lambda m: _ROOMS[m.group(1).lower()], text)
+    text = _PARTICLES.sub(_particle, rewrite(text, _RULES))
+    text = re.sub(r"\s+([,.!?])", r"\1", re.sub(r"\bthe the\b", "the", re.sub(r"  +", " ", text)))
+    return re.sub(r"^[\s,]+|(?<=[.!?])[\s,]+(?=\w)", lambda m: "" if m.start() == 0 else " ", text).strip()

@@ -1,0 +1,78 @@
+"""Requests said partly in Hindi, Urdu, Punjabi, Swahili or Sheng (assistant/hindi.py,
+assistant/swahili.py): what the reading makes of them, and what stays talk."""
+
+from __future__ import annotations
+
+import pytest
+
+from robovoice.assistant.hindi import from_hindi
+from robovoice.assistant.intent import read_request
+from robovoice.assistant.reading import ClauseKind
+from robovoice.assistant.swahili import from_swahili
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Arre beta, kitchen tak jao zara, jaldi jaldi.", "Arre, go to the kitchen, quickly."),
+    ("Pehle projector chalao, phir Anna ko video call milao.", "first turn on the projector, then video call Anna."),
+    ("Saath wali Clara ko video pe bulao.", "video call Clara."),
+    ("Yeh call khatam karo aur phir Doctor Weber sahib ko milao.", "end the call then video call Doctor Weber."),
+    ("Ruk ja, ruk ja! Udhar nahin, wapas kitchen aa ja.", "stop, stop! not there, go back to the kitchen."),
+    ("Anna nu video wala phone la de puttar.", "video call Anna."),  # Punjabi
+    ("Call na kaatna beta.", "don't end the call."),
+    ("Ben ko abhi call mat karo.", "don't video call Ben."),
+    ("Doctor ko bhi call kar sakte ho tum?", "can you video call Doctor?"),
+    ("Rasoi mein jao, phir darwaze pe jao.", "go to the kitchen, then go to the front door."),
+    # needs and goings-on are not asked: "I have to go to the bathroom", "she is going home"
+    ("Mujhe bathroom jaana hai.", "Mujhe bathroom jaana hai."),
+    ("Woh ghar ja rahi hai.", "Woh ghar ja rahi hai."),
+    ("living room bohot thanda hai aaj kal.", "living room bohot thanda hai these days."),
+    # said to someone by name: left as said
+    ("Imran beta, projector band kar do.", "Imran beta, turn off the projector."),
+    # no Hindi word: nothing changed ("to", "par", "me" are English)
+    ("Go to the kitchen, par for the course.", "Go to the kitchen, par for the course."),
+])
+def test_hindi_urdu_and_punjabi_requests_are_put_in_english(said: str, english: str) -> None:
+    assert from_hindi(said) == english
+
+
+@pytest.mark.parametrize(("said", "english"), [
+    ("Maze Jarvis, piga simu Uncle Ben, nataka kumwitisha fare ya matatu.", "Jarvis, call Ben,."),
+    ("Zima projector, alafu uende kitchen. Ni hayo tu.", "turn off the projector, then go to the kitchen. that's all."),
+    ("Sasa, kata hiyo call, then uende ukachaji.", "end the call, then go charge."),
+    ("Tafadhali nenda jikoni, kisha mpigie simu Clara.", "please go to the kitchen, then call Clara."),
+    ("Bro, chill kwa hallway hapo, usiblock mlango wa kitchen.",
+     "go and wait in the hallway, don't block mlango wa kitchen."),
+    ("Usipige simu Anna sasa hivi, amelala.", "don't call Anna now,."),
+    ("Jarvis, usikate simu, Anna is still talking.", "Jarvis, don't end the call, Anna is still talking."),
+    ("Unaweza kuwasha projector?", "can you turn on the projector?"),
+    ("Wewe, unaweza kuongea na watu kwa video?", "Wewe, are you able to ongea na watu kwa video?"),
+    ("Niaje Jarvis, uko wapi saa hii?", "Jarvis, where are you now?"),
+    ("usisimame, endelea tu.", "don't stop, keep going."),
+    # English that looks Swahili stays as said
+    ("I'm still using it, Sana.", "I'm still using it, Sana."),
+])
+def test_swahili_and_sheng_requests_are_put_in_english(said: str, english: str) -> None:
+    assert from_swahili(said) == english
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Projector bujha do, phir bedroom chalo, aur wahan pohonch ke Anna ko call karo.",
+     ("turn off the Projector", "go to the bedroom", "video call Anna")),
+    ("Manze, go to the living room, washa projector, then unipigie Ben, nataka kumwonyesha goal ya jana.",
+     ("go to the living room", "turn on the projector", "call Ben")),
+    ("Uende hallway kwanza, halafu front door.", ("go to the hallway first", "front door")),
+    ("Abhi Anna ko call mat karna, woh kaam pe hai.", ()),
+    ("Projector baad mein lagana, pehle sab khana kha lein.", ()),
+    ("Usiende kitchen sasa, the floor is wet.", ()),
+    ("Usichaji bado, bro, nataka ukae hapa kwanza.", ()),
+    ("Doctor ko bhi call kar sakte ho tum? Bas pooch rahi hoon, abhi nahin.", ()),
+])
+def test_a_request_said_partly_in_hindi_or_swahili_is_read(text: str, steps: tuple[str, ...]) -> None:
+    """Text tests v82 and v83: these were talk (nothing done), did one thing, or (the "na kaatna",
+    don't cut the call) started a call."""
+    assert tuple(read_request(text).worded_steps) == steps
+
+
+def test_an_ability_question_in_swahili_asks_nothing() -> None:
+    kinds = {c.kind for c in read_request("Wewe, unaweza kuongea na watu kwa video?").clauses}
+    assert ClauseKind.REQUEST not in kinds and ClauseKind.ABILITY in kinds
