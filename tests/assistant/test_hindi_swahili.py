@@ -13,14 +13,14 @@ from robovoice.assistant.swahili import from_swahili
 
 @pytest.mark.parametrize(("said", "english"), [
     ("Arre beta, kitchen tak jao zara, jaldi jaldi.", "Arre, go to the kitchen, quickly."),
-    ("Pehle projector chalao, phir Anna ko video call milao.", "first turn on the projector, then video call Anna."),
-    ("Saath wali Clara ko video pe bulao.", "video call Clara."),
-    ("Yeh call khatam karo aur phir Doctor Weber sahib ko milao.", "end the call then video call Doctor Weber."),
+    ("Pehle projector chalao, phir Anna ko video call milao.", "first turn on the projector, then call Anna."),
+    ("Saath wali Clara ko video pe bulao.", "call Clara."),
+    ("Yeh call khatam karo aur phir Doctor Weber sahib ko milao.", "end the call then call Doctor Weber."),
     ("Ruk ja, ruk ja! Udhar nahin, wapas kitchen aa ja.", "stop, stop! not there, go back to the kitchen."),
-    ("Anna nu video wala phone la de puttar.", "video call Anna."),  # Punjabi
+    ("Anna nu video wala phone la de puttar.", "call Anna."),  # Punjabi
     ("Call na kaatna beta.", "don't end the call."),
-    ("Ben ko abhi call mat karo.", "don't video call Ben."),
-    ("Doctor ko bhi call kar sakte ho tum?", "can you video call Doctor?"),
+    ("Ben ko abhi call mat karo.", "don't call Ben."),
+    ("Doctor ko bhi call kar sakte ho tum?", "can you call Doctor?"),
     ("Rasoi mein jao, phir darwaze pe jao.", "go to the kitchen, then go to the front door."),
     # needs and goings-on are not asked: "I have to go to the bathroom", "she is going home"
     ("Mujhe bathroom jaana hai.", "Mujhe bathroom jaana hai."),
@@ -57,7 +57,7 @@ def test_swahili_and_sheng_requests_are_put_in_english(said: str, english: str) 
 
 @pytest.mark.parametrize(("text", "steps"), [
     ("Projector bujha do, phir bedroom chalo, aur wahan pohonch ke Anna ko call karo.",
-     ("turn off the Projector", "go to the bedroom", "video call Anna")),
+     ("turn off the Projector", "go to the bedroom", "call Anna")),
     ("Manze, go to the living room, washa projector, then unipigie Ben, nataka kumwonyesha goal ya jana.",
      ("go to the living room", "turn on the projector", "call Ben")),
     ("Uende hallway kwanza, halafu front door.", ("go to the hallway first", "front door")),
@@ -76,3 +76,27 @@ def test_a_request_said_partly_in_hindi_or_swahili_is_read(text: str, steps: tup
 def test_an_ability_question_in_swahili_asks_nothing() -> None:
     kinds = {c.kind for c in read_request("Wewe, unaweza kuongea na watu kwa video?").clauses}
     assert ClauseKind.REQUEST not in kinds and ClauseKind.ABILITY in kinds
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # text test v84: "… karne se pehle" (before doing …), Punjabi "wal chal" and "te othon" (then, from
+    # there), "X pe jaake dekho" (go and look), "aur sab ho jaye toh" (once that's done)
+    ("Clara aunty ko call karne se pehle projector off kar do.", ("turn off the projector", "call Clara")),
+    ("Bedroom wal chal, te othon Ben nu phone kar.", ("go to the Bedroom", "call Ben")),
+    ("Hallway pe jaake dekho.", ("go to the Hallway", "check")),
+    ("Living room jao, projector chalu karo, aur sab ho jaye toh dock pe wapas aa jana.",
+     ("go to the Living room", "turn on the projector", "go back to the charging dock")),
+    ("Ruk ja! Te fer apne charging dock te wapas chala ja.", ("stop", "go back to the charging dock")),
+    # text test v85: "kabla ya ku…" (before …), "ukishafika X" (once you're in X), "ila kwanza" (but first)
+    ("Kabla ya kunipigia Ben, kwanza enda hallway.", ("first go to the hallway", "call Ben")),
+    ("Ukishafika sebuleni, mpigie Dr. Weber.", ("go to the living room", "call Dr. Weber")),
+    ("Mpigie daktari Weber, ila kwanza uje bedroom nilipo.", ("first come to the bedroom where I am", "call Weber")),
+    ("Aje, si kitchen bana, geuza uende bedroom.", ("go to the bedroom",)),
+    # taken back, or put off
+    ("Ben ko call kar do... nahi, ruko, rehne do, woh abhi so raha hoga.", ()),
+    ("Washa projector... aa, hapana, achana nayo, macho yananiuma leo.", ()),
+    ("Ngoja kwanza, baada ya chakula cha mchana ndio urudi kwenye dock.", ()),
+    ("can u like, play netflix on that projector or nah", ()),
+])
+def test_what_the_first_runs_of_v84_and_v85_missed_is_read(text: str, steps: tuple[str, ...]) -> None:
+    assert tuple(read_request(text).worded_steps) == steps

@@ -23,7 +23,7 @@ _HINDI_OFF = re.compile(r"\b(?:band|bandh|bund)" + _HINDI_DO, re.IGNORECASE)
 _HINDI_ON = re.compile(r"\b(?:chalu|chaalu|on|start)" + _HINDI_DO, re.IGNORECASE)
 
 # Spanish requests, in the familiar and the polite form (text test v69)
-_GO = r"(?<!['\u2019])\b(?:ve|vete|vaya|váyase|vayase)"
+_GO = r"(?<!['\u2019])\b(?:ve|vete|vaya|vayas|vayan|váyase|vayase)"
 _BACK = r"\b(?:regresa|regrese|vuelve|vuelva)"
 _CALL = r"\b(?:llama|llame|llámale|llamale|llámele|llamele)"
 _ON = r"\b(?:prende|prenda|enciende|encienda)"
@@ -41,7 +41,9 @@ _ROOM = re.compile(r"\b(?:(the\s+)|(?:el|la)\s+)?(" + "|".join(sorted(_ROOMS, ke
                    re.IGNORECASE)  # an English "the" before it is kept as said ("al" has made one)
 # the rooms are put in English only where a Spanish request or order word was said: "sala" and
 # "puerta" alone are not taken from an English sentence
-_ANY_SPANISH = re.compile("|".join([_VERB, r"\b(?:después|despues|luego|primero|por favor)\b"]), re.IGNORECASE)
+# (a whole word: "very" is not "ve")
+_ANY_SPANISH = re.compile("|".join(["(?:" + _VERB + r")\b", r"\b(?:después|despues|luego|primero|por favor)\b"]),
+                          re.IGNORECASE)
 _YA = re.compile(r"\bya\b", re.IGNORECASE)
 
 _SPANISH = rules((

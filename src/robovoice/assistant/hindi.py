@@ -20,26 +20,27 @@ _MARKER = re.compile(r"\b(?:karo|kardo|kar\s+(?:do|de|dein|dijiye|dena|lo)|karna
                      r"chalao|chala\s+(?:do|de|dein)|chalo|milao|mila\s+(?:do|de|dein)|lagao|laga\s+(?:do|de|dein)|"
                      r"bulao|ruko|ruk\s+ja\w*|rukiye|pehle|pahle|pehlan|phir|uske|iske|nahin|nahi|zara|jaldi|kya|hai|"
                      r"hain|aao|aaja|aa\s+ja|wapas|vapas|abhi|khatam|kaat\w*|bujha\w*|chalu|puttar|"
-                     r"wahan|udhar|idhar|sakte|sakti|sakta|shaam)\b",
+                     r"wahan|udhar|idhar|sakte|sakti|sakta|shaam|chal|othon|uthon|jaake|dekho|karne)\b",
                      re.IGNORECASE)
 # an infinitive said with "hai" is a need ("mujhe bathroom jaana hai": I have to go), a "raha" an
 # ongoing thing ("woh ghar ja rahi hai"): neither asks the robot
 _NOT_ASKED = r"(?!\s+(?:hai|hain|tha|thi|hoga|hogi|padega|padegi|chahiye|raha|rahi|rahe|chuka|chuki|chuke))"
 
 _GIVE = r"(?:\s+(?:do|de|dein|den|dijiye|dijie|dena|diyo|lo|lein|na))?"
-_DO = r"(?:karo|kardo|karde|karna|karein|karen|kijiye|kar" + _GIVE + r")"
+_DO = r"(?:karo|kardo|karde|karna|karein|karen|kijiye|kari|karin|kareen|kar" + _GIVE + r")"
 _DO = "(?:" + _DO + ")" + _NOT_ASKED
 # what follows the thing before the verb: a postposition, "bhi" (too), "ek" (a)
-_POST = (r"(?:\s+(?:ko|nu|noo|se|tak|mein|me|main|vich|wich|pe|par|ki\s+taraf|ke\s+paas|bhi|ek|zara|jaldi|abhi|"
-         r"turant|fauran|please))*")
+_POST = (r"(?:\s+(?:ko|nu|noo|se|tak|mein|me|main|vich|wich|pe|par|te|wal|val|ki\s+taraf|ke\s+paas|bhi|ek|zara|"
+         r"jaldi|abhi|turant|fauran|please))*")
 _PLACE = (r"((?:the\s+)?(?:living room|front door|charging dock|drawing room|"
-          r"(?!(?:aa|ja|jaa|chale|wapas|vapas)\b)[a-z]+))")
+          r"(?!(?:aa|ja|jaa|chale|chala|chali|wapas|vapas|wahan|yahan|udhar|idhar)\b)[a-z]+))")
 # someone to call: a title and a name, or a pronoun ("usko": him, her)
 # (what is said of them before is left out: "saath wali Clara", the Clara next door; "meri beti Anna")
 _WHO = (r"(?:(?:saath|bagal|padosi|padosan|meri|mera|mere|apni|apne|apna|wali|wala|vali|vala|beti|beta)\s+)*"
         r"((?:(?:doctor|dr\.?|uncle|aunty|auntie|nani|dadi|nana|dada|didi|bhaiya|chacha|chachi|mama|mami|bua|"
-        r"masi|mausi|phuphi)\s+)?(?!(?:ko|nu|se|bhi|ji|jee)\b)\w+)(?:\s+(?:sahib|saab|sahab|ji|jee))?")
-_CALL_NOUN = r"(?:video\s+wala\s+phone|video\s+call|video|phone|call)(?:\s+(?:pe|par))?"
+        r"masi|mausi|phuphi)\s+)?(?!(?:ko|nu|se|bhi|ji|jee)\b)\w+)"
+        r"(?:\s+(?:sahib|saab|sahab|ji|jee|aunty|auntie|uncle|bhaiya|bhai|didi|di|beta))*")
+_CALL_NOUN = r"(?:video\s+wala\s+phone|video\s+call|video|phone|call|ring|dial)(?:\s+(?:pe|par))?"
 _CONNECT = r"(?:milao|mila" + _GIVE + r"|milana|milaiye|lagao|laga" + _GIVE + r"|lagana|lagaiye|bulao|bula" + \
     _GIVE + r"|bulana|bulaiye|la" + _GIVE + r")"
 _CONNECT = "(?:" + _CONNECT + ")" + _NOT_ASKED
@@ -51,9 +52,10 @@ _OFF = "(?:" + _OFF + ")" + _NOT_ASKED
 _END = (r"(?:khatam\s+" + _DO + r"|kaato|kato|kaat" + _GIVE + r"|kaatna|katna|cut\s+" + _DO +
         r"|band\s+" + _DO + r"|rakh" + _GIVE + r"|rakho)")
 _END = "(?:" + _END + ")" + _NOT_ASKED
-_GO = r"(?:(?:chale\s+)?(?:jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa)|chalo|chaliye|chal)"
+_GO = (r"(?:(?:chale|chala|chali)\s+(?:jao|ja|jaa|jana|jaana)|jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa|chalo|"
+       r"chaliye|chal)")
 _GO = "(?:" + _GO + ")" + _NOT_ASKED
-_COME = r"(?:aao|aaiye|aa\s+jao|aa\s+ja|aaja|aajao|aa\s+jaiye|aana|aaja)"
+_COME = r"(?:aao|aaiye|aa\s+jao|aa\s+jana|aa\s+ja|aaja|aajao|aa\s+jaiye|aana)"
 _COME = "(?:" + _COME + ")" + _NOT_ASKED
 _VERB_WORD = r"(?:\w+(?:o|na|iye|ein|en|ao)|kar|ja|jaa|aa|chal|ruk|la)\b"
 
@@ -62,6 +64,21 @@ _RULES = rules((
     (r"(^|[.!?,;]\s*)([^.!?,;]*?)\b(\w+)\s+(?:sakte|sakti|sakta|sakoge|sakogi|sakenge)\b"
      r"(?:\s+(?:ho|hain|hai|hoon|hun))?(?:\s+(?:tum|aap))?(?:\s+kya)?", r"\1can you \2\3o"),
     (r"\b(?:kya|kyaa)\s+(?:tum|aap)\b", ""), (r"(^|[.!?,;]\s*)kya\b", r"\1"),
+    # "A karne se pehle, B": before you A, B; "A karne ke baad, B": after you A, B (the verb's stem and "o")
+    (r"(^|[.!?,;]\s*)([^.!?,;]+?)\s+(\w+?)ne\s+se\s+(?:pehle|pahle|pehlan)\b,?", r"\1before you \2 \3o,"),
+    (r"(^|[.!?,;]\s*)([^.!?,;]+?)\s+(\w+?)ne\s+ke\s+baad\b,?", r"\1after you \2 \3o,"),
+    # taken back: "… nahi, ruko, rehne do" (no, wait, leave it)
+    (r"(^|[.!?,;\u2026]\s*)(?:nahi|nahin|nai|na)\s*,\s*(?:ruko|ruk\s+jao|ruk)\b", r"\1no, wait"),
+    (r"\b(?:rehne\s+(?:do|de|dijiye)|chhodo|chhod\s+(?:do|de)|jaane\s+(?:do|de)|koi\s+baat\s+nahi)\b", "leave it"),
+    (r"(^|[.!?,;\u2026]\s*)(?:nahi|nahin|nai)\b(?=\s*[,.!?\u2026])", r"\1no"),
+    (r"\b(?:wahan|wahaan|vahan)\s+(?:jaake|ja\s+ke|jaa\s+ke|jakar)\b", "once you get there,"),
+    (r"\b(?:te\s+|aur\s+)?(?:othon|uthon|wahan\s+se)\b", "then"), (r"\b(?:othe|uthe)\b", "there"),
+    # "front door pe jaake dekho": go to the front door and look
+    (r"\b" + _PLACE + _POST + r"\s+(?:jaake|jaa\s+ke|ja\s+ke|jakar|jaa\s+kar|jake)\b", r"go to the \1 and"),
+    (r"\b(?:dekho|dekhna|dekh\s+lo|check\s+karo)\b", "check"),
+    # "aur sab ho jaye toh …": and once that's done, …
+    (r"\b(?:aur\s+)?(?:sab|yeh|ye|woh)?\s*(?:ho\s+jaye|ho\s+jaaye|ho\s+jaane\s+ke\s+baad)\s+(?:toh|to|tab)?\b",
+     " and once that's done,"),
     # "Udhar nahin" (not there), "abhi nahin" (not now)
     (r"\b(?:udhar|wahan|wahaan|idhar|yahan)\s+(?:nahin|nahi|nai)\b", "not there"),
     (r"\babhi\s+(?:nahin|nahi|nai)\b", "not now"),
@@ -75,9 +92,9 @@ _RULES = rules((
     # a call made: "Anna ko video call milao", "Anna nu video wala phone la de", "Clara ko video pe bulao"
     (r"\b(?:us|usko|use|unko|unhe|inko)\s+" + _POST.replace("ko|", "") + r"\s*(?:" + _CALL_NOUN + r"\s+)?(?:" + _DO +
      r"|" + _CONNECT + r")\b", "call them"),
-    (r"\b" + _WHO + _POST + r"\s+" + _CALL_NOUN + r"\s+(?:" + _DO + r"|" + _CONNECT + r")\b", r"video call \1"),
-    (r"\b" + _WHO + r"\s+(?:ko|nu)(?:\s+bhi)?\s+" + _CONNECT + r"\b", r"video call \1"),
-    (r"\b" + _CALL_NOUN + r"\s+(?:" + _DO + r"|" + _CONNECT + r")\s+" + _WHO + r"\s+(?:ko|nu)\b", r"video call \1"),
+    (r"\b" + _WHO + _POST + r"\s+" + _CALL_NOUN + r"\s+(?:" + _DO + r"|" + _CONNECT + r")\b", r"call \1"),
+    (r"\b" + _WHO + r"\s+(?:ko|nu)(?:\s+bhi)?\s+" + _CONNECT + r"\b", r"call \1"),
+    (r"\b" + _CALL_NOUN + r"\s+(?:" + _DO + r"|" + _CONNECT + r")\s+" + _WHO + r"\s+(?:ko|nu)\b", r"call \1"),
     # the projector: "projector chalao", "projector baad mein lagana", "projector bujha do"
     (r"\b(projector|tv|it)\s+(?:ko\s+)?((?:\w+\s+){0,2}?)" + _ON + r"\b", r"turn on the \1 \2"),
     (r"\b(projector|tv|it)\s+(?:ko\s+)?((?:\w+\s+){0,2}?)" + _OFF + r"\b", r"turn off the \1 \2"),
@@ -86,25 +103,33 @@ _RULES = rules((
      + _GO + r")\b", "go charge"),
     # going and coming: "kitchen tak jao", "wapas kitchen aa ja", "bedroom chalo"
     (r"\b(?:wapas|vapas|waapas)\s+" + _PLACE + _POST + r"\s+(?:" + _GO + "|" + _COME + r")\b", r"go back to the \1"),
+    (r"\b(?:apne|apni|apna)?\s*\b" + _PLACE + _POST + r"\s+(?:wapas|vapas|waapas)\s+(?:" + _GO + "|" + _COME + r")\b",
+     r"go back to the \1"),
     (r"\b" + _PLACE + _POST + r"\s+" + _COME + r"\b", r"come to the \1"),
     (r"\b" + _PLACE + _POST + r"\s+" + _GO + r"\b", r"go to the \1"),
     (r"\b(?:wapas|vapas)\s+" + _GO + r"\b", "go back"), (r"\b(?:wapas|vapas)\s+" + _COME + r"\b", "come back"),
     # when you get there: "wahan pohonch ke"
     (r"\b(?:wahan|wahaan|vahan)\s+(?:pohonch|pahunch|pohanch|pahonch)\s*(?:ke|kar|kar\s+ke)\b", "once you get there,"),
     # order words and time
-    (r"\b(?:aur\s+)?(?:phir|fir|pher|fer|uske\s+baad|iske\s+baad|us\s+ke\s+baad|baad\s+vich)\b", "then"),
+    (r"\b(?:phir|fir)\s+se\b", "again"),
+    (r"\b(?:aur\s+|te\s+)?(?:phir|fir|pher|fer|uske\s+baad|iske\s+baad|us\s+ke\s+baad|baad\s+vich)\b", "then"),
     (r"\b(?:pehle|pahle|pehlan|pehla)\b", "first"), (r"\baur\b", "and"),
     (r"\b(?:baad\s+mein|baad\s+me|baad\s+main|thodi\s+der\s+(?:mein|baad))\b", "later"),
     (r"\baaj\s*kal\b", "these days"), (r"\bkal\b", "tomorrow"), (r"\bshaam\s+ko\b", "this evening"),
     (r"\b(?:abhi|hun|hune)\b", "now"),
     (r"\bjaldi(?:\s+(?:jaldi|se))?\b", "quickly"),
+    (r"\bcharge\s+(?:hone|karne)(?:\s+(?:ke\s+liye|ko))?\b", "to charge"),
+    # what is left of a place's postposition ("…, phir front door pe,"), Punjabi "te" (and) opening a clause
+    (r"\b(living room|front door|charging dock|kitchen|bedroom|bathroom|hallway)\s+(?:pe|par|te|tak|mein|me|wal)\b"
+     r"(?=\s*(?:[,.!?]|$))", r"\1"),
+    (r"(^|[.!?,;]\s*)te\s+(?=\w)", r"\1and "),
     (r"\b(?:kitchen|rasoi|rasoi\s*ghar)\s+(?=\s*(?:[,.!?]|$))", "the kitchen"),
 ))
 _ROOMS = {"rasoi ghar": "kitchen", "rasoighar": "kitchen", "rasoi": "kitchen", "baithak": "living room",
           "drawing room": "living room", "kamre": "bedroom", "kamra": "bedroom", "ghusalkhana": "bathroom",
           "gusalkhana": "bathroom", "darwaza": "front door", "darwaze": "front door", "darwaaze": "front door",
-          "charger": "charging dock"}
-_ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
+          "charger": "charging dock", "dock": "charging dock"}
+_ROOM = re.compile(r"(?<!charging )\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
 # what a request carries that says nothing asked: particles, "beta" (child), "ji", "zara" (just)
 # ("Priya beta, …" is said to Priya, and stays as said)
 _PARTICLES = re.compile(r"(\b(?-i:[A-Z])\w*)?\s*\b(?:zara|ji|jee|beta|puttar|yaar|bhai|bhaiya|na|toh|bhi|sahib|saab|"

@@ -298,6 +298,8 @@ def plain(text: str) -> str:
     text = _NO_TAG.sub(".", text)  # "tell it to go to the bedroom, no?": a tag asking agreement (text test v61)
     text = _WAIT_NO.sub(" ", text)  # "Call Dr. Weber... wait, no need": taken back, no stop (text test v70)
     text = _NEXT_DOOR.sub("nextdoor", text)  # "Clara next door": the neighbour's, no door of the home (text test v58)
+    # "can u like, play netflix on that projector or nah": one question, "or not" (text test v84)
+    text = _OR_NAH.sub(lambda m: f"{m.group(1) or ''}or not", _ASK_LIKE.sub(r"\1 ", text))
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 
@@ -306,6 +308,11 @@ _GO_AHEAD = re.compile(r"\bgo ahead and (?=\w)", re.IGNORECASE)
 _WAIT_NO = re.compile(r"(?<=[.,!?;\u2026\u2014-]) *wait[,!.\u2026]*\s+"
                       r"(?=(?:no|nah|actually|never mind|forget|scratch)\b)", re.IGNORECASE)
 _NEXT_DOOR = re.compile(r"\bnext door\b", re.IGNORECASE)
+_ASK_LIKE = re.compile(r"\b((?:can|could|would|will) (?:you|u|ya)) like\s*,\s*(?=\w)", re.IGNORECASE)
+_OR_NAH = re.compile(r"\bor (?:nah+|naw|nope|no)\b(?=\s*(?:[?.!,]|$))"
+                     # "or what" after a question only ("Call Ben or what?" is impatience, a request)
+                     r"|(\b(?:can|could|would|will|do|does|is|are) (?:you|u|ya|it) [^.!?]*?)\bor what\b",
+                     re.IGNORECASE)
 
 
 # a word said again after a hesitation or a search for the word ("Put the, um, the …", "switch on

@@ -22,6 +22,8 @@ _MARKER = re.compile(r"\b(?:tafadhali|halafu|alafu|kisha|kwanza|uende|nenda|enda
                      r"subiri|ngoja|maliza|nataka|tafadhalini|shangazi|mjomba)\b",
                      re.IGNORECASE)
 
+_PLACES = r"(?:living room|front door|charging dock|kitchen|bedroom|bathroom|hallway)"
+_SOMEWHERE = r"(?=\s+(?!(?:sasa|tu|hapa|hapo|basi|haraka)\b)\w)"  # a place said after the verb
 _TO = r"(?:\s+(?:kwa|kwenye|mpaka|hadi|pale|ndani\s+ya|huko|hapo|kule))*"
 _GO_WORDS = r"(?:nenda|enda|uende|ende|kaende|kwenda|elekea|uelekee|ukaende|genda|dunda)"  # genda: Luganda
 _GO = r"\b" + _GO_WORDS + r"\b"
@@ -39,6 +41,21 @@ _RULES = rules((
     (r"\bunaweza\b(?:\s+ku(?=\w))?", "are you able to "),  # a verb this table does not know: what it can do
     (r"\b(?:uko|upo|uko\s+wapi|mko)\s+wapi\b", "where are you"), (r"\bama\b", "or"),
     (r"\bunajua\s+(?:ku(?=\w))?", "do you know how to "),
+    # (text test v85) "ungeweza …?" (could you), "kabla ya ku…" (before you …), "ukishafika X" (once you're
+    # in X), "ila" (but), "uone kama" (and see if), "achana nayo" (leave it), "ngoja kwanza" (hold on)
+    (r"\b(?:ungeweza|ungeza|ungependa)\b(?:\s+ku(?=\w))?", "could you "),
+    (r"\bkabla\s+ya\s+ku", "before you "), (r"\bkabla\s+ya\b", "before"),
+    (r"\buki(?:sha)?fika\b(?:\s+(?:kwa|kwenye))?", "once you're in the"), (r"\bila\b", "but"),
+    (r"\b(?:u|ka)?(?:one|angalie|cheki)\s+kama\b", ", and check if"), (r"\bkama\b", "if"),
+    (r"\b(?:achana|acha)\s+(?:na\s*(?:yo|hiyo|hio)|nayo|hiyo|hio)\b", "leave it"),
+    (r"\b(?:ngoja|subiri)\s+(?:kwanza|kidogo)\b", "hold on"),
+    (r"\bbaada\s+ya\s+chakula\s+cha\s+(?:mchana|asubuhi)\b", "after lunch"),
+    (r"\bbaada\s+ya\s+chakula(?:\s+cha\s+(?:jioni|usiku))?\b", "after dinner"), (r"\bndio\b", ""),
+    (r"\bsi\s+(?=(?:the\s+)?" + _PLACES + r"\b)", "not the "), (r"\bgeuza\b", "turn round and"),
+    (r"\b(?:ni|u|uni)?unganish\w*(?:\s+(?:video\s+call|simu|call))?\s+(?:na|kwa)\b", "video call"),
+    (r"\b(?:hiyo\s+|hii\s+)?safari\s+(?:yako\s+)?(?:i|u|ku)?cancel\w*", "cancel the trip"),
+    (r"\b(?:i|u|ku)(cancel|stop|end|switch|call|check)\b", r"\1"), (r"\bfasta\b", "quickly"),
+    (r"\bnilipo\b", "where I am"), (r"\bhaya\b", "okay"),
     # its negative, a prefix: "usiende", "usipige simu Ben", "usiwashe projector", "usikate call"
     (r"\busi(?:ende|elekee|ingie)\b" + _TO, "don't go to the"), (r"\busirudi\b" + _TO, "don't go back to the"),
     (r"\busije\b", "don't come"), (r"\busi(?:pige|mpigie)(?:\s+simu)?(?:\s+(?:kwa|na))?\b", "don't call"),
@@ -49,7 +66,6 @@ _RULES = rules((
     (r"\busi(?!ng?\b)(\w{2,})", r"don't \1"),
     (r"\bsi\s+sasa\b|\bsio\s+sasa\b", "not now"), (r"\bbado\b", "not yet"), (r"\bhapana\b", "no"),
     (r"\bsitaki\b", "I don't want"), (r"\b(?:ni)?nataka\b", "I want"),
-    (r"\bya\b", "of"),  # not texting's "you"
     # calls: "piga simu Uncle Ben", "mpigie Anna", "kata hiyo call"
     (_CALL + r"\s*" + _WHO_TITLE + r"?", "call "),
     (r"\b(?:kata|maliza|zima)\s+(?:hiyo\s+|hii\s+)?(?:call|simu)\b", "end the call"),
@@ -60,7 +76,8 @@ _RULES = rules((
     (r"\b(?:" + _GO_WORDS + r"\s+)?\b(?:ukachaji|kuchaji|kachaji|uchaji|jichaji|chaji)\b", " go charge"),
     (r"\b(?:chaja|charger)\b", "charging dock"),
     # going: "uende bedroom", "nenda kwa kitchen", "rudi sebuleni", "chill kwa hallway" (Sheng: wait there)
-    (_GO + _TO, "go to the"), (_COME + _TO, "come to the"), (_BACK + _TO, "go back to the"),
+    (_GO + _TO + _SOMEWHERE, "go to the"), (_COME + _TO + _SOMEWHERE, "come to the"),
+    (_BACK + _TO + _SOMEWHERE, "go back to the"), (_GO, "go"), (_COME, "come"), (_BACK, "go back"),
     (r"\bingia\b" + _TO, "go into the"), (r"\bchill\s+(?:kwa|kwenye|pale)\b", "go and wait in the"),
     (r"\b(?:toka|ondoka)\s+(?:hapa|hapo)\b", "leave here"), (r"\b(?:simama|stopu)\b", "stop"),
     (r"\b(?:subiri|ngoja)\b", "wait"),
@@ -71,15 +88,16 @@ _RULES = rules((
     (r"\b(?:tafadhali|tafadhalini|ebu|hebu|tafadhari)\b", "please"), (r"\b(?:asante|webale)(?:\s+sana)?\b", "thanks"),
     (r"\bni\s+hayo\s+tu\b|\bbasi\s+tu\b", "that's all"), (r"\b(?:sawa|poa)\b", "okay"),
     (r"\bna\s+(?=(?:go|come|call|turn|then|end|stop|please)\b)", "and "),
+    (r"\bya\b", "of"),  # not texting's "you"
 ))
 _ROOMS = {"jikoni": "kitchen", "jiko": "kitchen", "sebuleni": "living room", "sebule": "living room",
           "chumbani": "bedroom", "chumba cha kulala": "bedroom", "bafuni": "bathroom", "chooni": "bathroom",
           "choo": "bathroom", "msalani": "bathroom", "mlangoni": "front door", "mlango wa mbele": "front door",
           "korido": "hallway", "ukumbini": "hallway"}
 _ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
-_PLACES = r"(?:living room|front door|charging dock|kitchen|bedroom|bathroom|hallway)"
 # what says nothing asked: greetings and Sheng's address words, "hapa"/"hapo" (here, there) left over
-_PARTICLES = re.compile(r"\s*\b(?:maze|manze|niaje|msee|buda|mzee|bro|sasa|hapa|hapo|huko|kule|hiyo|hii|tu|"
+_PARTICLES = re.compile(r"\s*\b(?:maze|manze|niaje|msee|buda|mzee|bro|sasa|hapa|hapo|huko|kule|hiyo|hii|tu|ile|yile|"
+                        r"hizo|hizi|huyo|bana|banange|aje|aisee|mwanangu|"
                         r"ssebo|nnyabo|mukwano|yo)\b(?=\s*(?:[,.!?]|$|\s))", re.IGNORECASE)
 
 
@@ -102,4 +120,4 @@ def from_swahili(text: str) -> str:
     # "go to the Ben" (the name after a verb said as a place): no "the"; "the the": one
     text = re.sub(r"\b(to|into|in) the\s+(?!" + _PLACES + r"\b)(?=(?-i:[A-Z]))", r"\1 ", text, flags=re.IGNORECASE)
     text = re.sub(r"\bthe\s+the\b", "the", text, flags=re.IGNORECASE)
-    return re.sub(r"^[\s,]+", "", re.sub(r"\s+([,.!?])", r"\1", re.sub(r"  +", " ", text))).strip()
+    return re.sub(r"^[\s,.!?]+", "", re.sub(r"\s+([,.!?])", r"\1", re.sub(r"  +", " ", text))).strip()
