@@ -100,3 +100,25 @@ def test_an_ability_question_in_swahili_asks_nothing() -> None:
 ])
 def test_what_the_first_runs_of_v84_and_v85_missed_is_read(text: str, steps: tuple[str, ...]) -> None:
     assert tuple(read_request(text).worded_steps) == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # text test v86: Urdu's courtesy ("tashreef le jaiye"), the verb before its negation ("rukiye mat"),
+    # "X check karo", "wapas X aake …", "X ki taraf ho aaiye", "kitchen nahin" (not the kitchen)
+    ("Miyan, zara kitchen tak tashreef le jaiye.", ("go to the kitchen",)),
+    ("Rukiye mat, chalte rahiye; main to bas khaans raha tha.", ()),
+    ("Haan suno, pehle front door check karo, phir wapas living room aake projector on kar dena.",
+     ("first go check the front door", "come back to the living room", "turn on the projector")),
+    ("Dock par jaane se pehle zara bathroom ki taraf ho aaiye.", ("go to the bathroom", "go to the charging dock")),
+    ("Arey, kitchen nahin bhai, bedroom ki taraf mudiye.", ("go to the bedroom",)),
+    ("Anna beti se video call milaiye.", ("call Anna",)),
+    # text test v87: "projekta", "naomba u…", "iwashe", "ukate hii call", "wacha tu, si lazima"
+    ("Zima projekta, tafadhali.", ("turn off the projector",)),
+    ("Naomba umpigie binti yangu Anna.", ("please call my daughter Anna",)),
+    ("Manze, zima projector na ukate hii call, tumemaliza.", ("turn off the projector", "end the call")),
+    ("Enda bedroom... aah, wacha tu, si lazima.", ()),
+    ("Tafadhali fanya hivi: kwanza uzime projekta, pili uende korido, na mwisho umpigie Ben.",
+     ("please first turn off the projector", "go to the hallway", "finally call Ben")),
+])
+def test_what_the_first_runs_of_v86_and_v87_missed_is_read(text: str, steps: tuple[str, ...]) -> None:
+    assert tuple(read_request(text).worded_steps) == steps

@@ -20,42 +20,46 @@ _MARKER = re.compile(r"\b(?:karo|kardo|kar\s+(?:do|de|dein|dijiye|dena|lo)|karna
                      r"chalao|chala\s+(?:do|de|dein)|chalo|milao|mila\s+(?:do|de|dein)|lagao|laga\s+(?:do|de|dein)|"
                      r"bulao|ruko|ruk\s+ja\w*|rukiye|pehle|pahle|pehlan|phir|uske|iske|nahin|nahi|zara|jaldi|kya|hai|"
                      r"hain|aao|aaja|aa\s+ja|wapas|vapas|abhi|khatam|kaat\w*|bujha\w*|chalu|puttar|"
-                     r"wahan|udhar|idhar|sakte|sakti|sakta|shaam|chal|othon|uthon|jaake|dekho|karne)\b",
+                     r"wahan|udhar|idhar|sakte|sakti|sakta|shaam|chal|othon|uthon|jaake|dekho|karne|tashreef|"
+                     r"farmaiye|mudiye|rukiye|jaldi|milaiye|lagaiye|bulaiye|chalaiye|dijiye)\b",
                      re.IGNORECASE)
 # an infinitive said with "hai" is a need ("mujhe bathroom jaana hai": I have to go), a "raha" an
 # ongoing thing ("woh ghar ja rahi hai"): neither asks the robot
 _NOT_ASKED = r"(?!\s+(?:hai|hain|tha|thi|hoga|hogi|padega|padegi|chahiye|raha|rahi|rahe|chuka|chuki|chuke))"
 
 _GIVE = r"(?:\s+(?:do|de|dein|den|dijiye|dijie|dena|diyo|lo|lein|na))?"
-_DO = r"(?:karo|kardo|karde|karna|karein|karen|kijiye|kari|karin|kareen|kar" + _GIVE + r")"
+_DO = (r"(?:karo|kardo|karde|karna|karein|karen|kijiye|kari|karin|kareen|farmaiye|farmayen|farmaaiye|kar" + _GIVE +
+       r")")
 _DO = "(?:" + _DO + ")" + _NOT_ASKED
 # what follows the thing before the verb: a postposition, "bhi" (too), "ek" (a)
 _POST = (r"(?:\s+(?:ko|nu|noo|se|tak|mein|me|main|vich|wich|pe|par|te|wal|val|ki\s+taraf|ke\s+paas|bhi|ek|zara|"
          r"jaldi|abhi|turant|fauran|please))*")
 _PLACE = (r"((?:the\s+)?(?:living room|front door|charging dock|drawing room|"
-          r"(?!(?:aa|ja|jaa|chale|chala|chali|wapas|vapas|wahan|yahan|udhar|idhar)\b)[a-z]+))")
+          r"(?!(?:aa|ja|jaa|chale|chala|chali|wapas|vapas|wahan|yahan|udhar|idhar|and|the|to|go|come|then|arre|arey|oye|haan|yeh|woh)\b)(?<!['\u2019])[a-z]{3,}))")
 # someone to call: a title and a name, or a pronoun ("usko": him, her)
 # (what is said of them before is left out: "saath wali Clara", the Clara next door; "meri beti Anna")
 _WHO = (r"(?:(?:saath|bagal|padosi|padosan|meri|mera|mere|apni|apne|apna|wali|wala|vali|vala|beti|beta)\s+)*"
         r"((?:(?:doctor|dr\.?|uncle|aunty|auntie|nani|dadi|nana|dada|didi|bhaiya|chacha|chachi|mama|mami|bua|"
         r"masi|mausi|phuphi)\s+)?(?!(?:ko|nu|se|bhi|ji|jee)\b)\w+)"
-        r"(?:\s+(?:sahib|saab|sahab|ji|jee|aunty|auntie|uncle|bhaiya|bhai|didi|di|beta))*")
+        r"(?:\s+(?:sahib|saab|sahab|ji|jee|aunty|auntie|uncle|bhaiya|bhai|didi|di|beta|beti|bitiya))*")
 _CALL_NOUN = r"(?:video\s+wala\s+phone|video\s+call|video|phone|call|ring|dial)(?:\s+(?:pe|par))?"
 _CONNECT = r"(?:milao|mila" + _GIVE + r"|milana|milaiye|lagao|laga" + _GIVE + r"|lagana|lagaiye|bulao|bula" + \
     _GIVE + r"|bulana|bulaiye|la" + _GIVE + r")"
 _CONNECT = "(?:" + _CONNECT + ")" + _NOT_ASKED
 _ON = (r"(?:chalao|chala" + _GIVE + r"|chalana|chalaiye|lagao|laga" + _GIVE + r"|lagana|jalao|jala" + _GIVE +
-       r"|kholo|khol" + _GIVE + r"|(?:chalu|chaalu|on|start)\s+" + _DO + r")")
+       r"|kholo|khol" + _GIVE + r"|(?:chalu|chaalu|on|start|roshan)\s+" + _DO + r")")
 _ON = "(?:" + _ON + ")" + _NOT_ASKED
 _OFF = r"(?:bujhao|bujha" + _GIVE + r"|(?:band|bandh|bund|off)\s+" + _DO + r"|hatao|hata" + _GIVE + r")"
 _OFF = "(?:" + _OFF + ")" + _NOT_ASKED
 _END = (r"(?:khatam\s+" + _DO + r"|kaato|kato|kaat" + _GIVE + r"|kaatna|katna|cut\s+" + _DO +
         r"|band\s+" + _DO + r"|rakh" + _GIVE + r"|rakho)")
 _END = "(?:" + _END + ")" + _NOT_ASKED
-_GO = (r"(?:(?:chale|chala|chali)\s+(?:jao|ja|jaa|jana|jaana)|jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa|chalo|"
-       r"chaliye|chal)")
+# (Urdu's courtesy: "tashreef le jaiye", take your honoured self there; "ki taraf mudiye": turn towards)
+_GO = (r"(?:(?:chale|chala|chali)\s+(?:jao|ja|jaa|jana|jaana)|tashreef\s+le\s+(?:jaiye|jaaiye|jayen|chaliye|chalein)|"
+       r"jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa|chalo|chaliye|chal|mudiye|mudo|mud\s+jao|ho\s+aaiye|ho\s+aao)")
 _GO = "(?:" + _GO + ")" + _NOT_ASKED
-_COME = r"(?:aao|aaiye|aa\s+jao|aa\s+jana|aa\s+ja|aaja|aajao|aa\s+jaiye|aana)"
+_COME = (r"(?:aao|aaiye|aa\s+jao|aa\s+jana|aa\s+ja|aaja|aajao|aa\s+jaiye|aana|tashreef\s+(?:laiye|le\s+aaiye)|"
+         r"aa(?=\s*(?:[,.!?]|$|\s+(?:jaldi|zara|na)\b)))")
 _COME = "(?:" + _COME + ")" + _NOT_ASKED
 _VERB_WORD = r"(?:\w+(?:o|na|iye|ein|en|ao)|kar|ja|jaa|aa|chal|ruk|la)\b"
 
@@ -75,6 +79,8 @@ _RULES = rules((
     (r"\b(?:te\s+|aur\s+)?(?:othon|uthon|wahan\s+se)\b", "then"), (r"\b(?:othe|uthe)\b", "there"),
     # "front door pe jaake dekho": go to the front door and look
     (r"\b" + _PLACE + _POST + r"\s+(?:jaake|jaa\s+ke|ja\s+ke|jakar|jaa\s+kar|jake)\b", r"go to the \1 and"),
+    (r"\b" + _PLACE + _POST + r"\s+check\s+" + _DO + r"\b", r"go and check the \1"),  # "front door check karo"
+    (r"\bdekho\b(?=\s*[,!])", "look"),  # "Arre dekho, …": look, (not an errand)
     (r"\b(?:dekho|dekhna|dekh\s+lo|check\s+karo)\b", "check"),
     # "aur sab ho jaye toh …": and once that's done, …
     (r"\b(?:aur\s+)?(?:sab|yeh|ye|woh)?\s*(?:ho\s+jaye|ho\s+jaaye|ho\s+jaane\s+ke\s+baad)\s+(?:toh|to|tab)?\b",
@@ -85,10 +91,15 @@ _RULES = rules((
     # a negation before the verb: the clause is "don't …" ("Call na kaatna", "Anna ko call mat karna")
     (r"(^|[.!?,;]\s*|\b(?:aur|phir|par|lekin)\s+)([^.!?,;]*?)\b(?:mat|na|nahin|nahi|nai)\s+"
      r"(?=(?:\w+\s+)?" + _VERB_WORD + r")", r"\1don't \2"),
+    # the verb, then its negation: "Rukiye mat, chalte rahiye" (don't stop, keep going)
+    (r"(^|[.!?,;]\s*)([^.!?,;]*?)\b(" + _VERB_WORD + r")\s+(?:mat|nahin|nahi)\b(?=\s*[,.!?;]|$)", r"\1\2don't \3"),
+    (r"\b(?:chalte|(?:aage\s+)?badhte)\s+(?:rahiye|raho|rahna)\b", "keep going"),
+    (r"\bagar\b", "if"), (r"\b(?:aake|aa\s+ke|aakar)\b", "come and"),
     (r"\b(?:bas\s+)?pooch\s+(?:raha|rahi|rahe)\s+(?:hoon|hun|hu|tha|thi)\b", "I'm only asking"),
     (r"\b(?:ruko|ruk\s+jao|ruk\s+ja|rukiye|ruk\s+jaiye|ruk|thamo|tham\s+jao)\b", "stop"),
     # a call ended: "call khatam karo", "phone rakh do"
-    (r"\b(?:yeh|ye|woh|wo|is|ab)?\s*\b(?:call|phone)\s+(?:ko\s+)?" + _END + r"\b", " end the call"),
+    (r"\b(?:yeh|ye|woh|wo|is|ab)?\s*\b(?:call|phone|guftagu|baat|baatcheet)\s+(?:ko\s+)?" + _END + r"\b",
+     " end the call"),
     # a call made: "Anna ko video call milao", "Anna nu video wala phone la de", "Clara ko video pe bulao"
     (r"\b(?:us|usko|use|unko|unhe|inko)\s+" + _POST.replace("ko|", "") + r"\s*(?:" + _CALL_NOUN + r"\s+)?(?:" + _DO +
      r"|" + _CONNECT + r")\b", "call them"),
@@ -99,9 +110,16 @@ _RULES = rules((
     (r"\b(projector|tv|it)\s+(?:ko\s+)?((?:\w+\s+){0,2}?)" + _ON + r"\b", r"turn on the \1 \2"),
     (r"\b(projector|tv|it)\s+(?:ko\s+)?((?:\w+\s+){0,2}?)" + _OFF + r"\b", r"turn off the \1 \2"),
     # charging: "charge pe lag jao", "charger pe chale jao"
-    (r"\b(?:charging|charge|charger)\s+(?:pe|par|ke\s+liye)?\s*(?:lag\s+jao|lago|ho\s+jao|lag\s+ja|" + _DO + r"|"
+    (r"\b(?:charging|charge|charger)\s+(?:pe|par|ke\s+liye)?\s*(?:(?:hone|karne)\s+)?"
+     r"(?:lag\s+jao|lago|ho\s+jao|lag\s+ja|" + _DO + r"|"
      + _GO + r")\b", "go charge"),
     # going and coming: "kitchen tak jao", "wapas kitchen aa ja", "bedroom chalo"
+    # "front door check karo" (check the front door), "wapas living room aake …" (come back to it and …),
+    # "bathroom ki taraf ho aaiye" (go by the bathroom), "kitchen nahin" (not the kitchen)
+    (r"\b(?:wapas|vapas)\s+" + _PLACE + _POST + r"\s+come and\b", r"come back to the \1 and"),
+    (r"\b" + _PLACE + _POST + r"\s+come and\b", r"come to the \1 and"),
+    (r"\b" + _PLACE + _POST + r"\s+ho\s+(?:aaiye|aao|aana|aaye)\b", r"go to the \1"),
+    (r"\b" + _PLACE + r"\s+(?:nahin|nahi|nai)\b", r"not the \1"),
     (r"\b(?:wapas|vapas|waapas)\s+" + _PLACE + _POST + r"\s+(?:" + _GO + "|" + _COME + r")\b", r"go back to the \1"),
     (r"\b(?:apne|apni|apna)?\s*\b" + _PLACE + _POST + r"\s+(?:wapas|vapas|waapas)\s+(?:" + _GO + "|" + _COME + r")\b",
      r"go back to the \1"),
@@ -116,7 +134,7 @@ _RULES = rules((
     (r"\b(?:pehle|pahle|pehlan|pehla)\b", "first"), (r"\baur\b", "and"),
     (r"\b(?:baad\s+mein|baad\s+me|baad\s+main|thodi\s+der\s+(?:mein|baad))\b", "later"),
     (r"\baaj\s*kal\b", "these days"), (r"\bkal\b", "tomorrow"), (r"\bshaam\s+ko\b", "this evening"),
-    (r"\b(?:abhi|hun|hune)\b", "now"),
+    (r"\b(?:abhi|hun|hune|ab)\b", "now"),
     (r"\bjaldi(?:\s+(?:jaldi|se))?\b", "quickly"),
     (r"\bcharge\s+(?:hone|karne)(?:\s+(?:ke\s+liye|ko))?\b", "to charge"),
     # what is left of a place's postposition ("…, phir front door pe,"), Punjabi "te" (and) opening a clause
@@ -133,6 +151,8 @@ _ROOM = re.compile(r"(?<!charging )\b(" + "|".join(sorted(_ROOMS, key=len, rever
 # what a request carries that says nothing asked: particles, "beta" (child), "ji", "zara" (just)
 # ("Priya beta, …" is said to Priya, and stays as said)
 _PARTICLES = re.compile(r"(\b(?-i:[A-Z])\w*)?\s*\b(?:zara|ji|jee|beta|puttar|yaar|bhai|bhaiya|na|toh|bhi|sahib|saab|"
+                        r"arre|"
+                        r"arey|oye|suno|haan|miyan|seedha|sidha|"
                         r"please\s+na)\b(?=\s*(?:[,.!?]|$|\s))", re.IGNORECASE)
 
 
@@ -144,7 +164,9 @@ def _particle(m: re.Match[str]) -> str:
     return m.group(0) if opens and name.lower() not in _NOT_NAMES else (name or "")
 
 
-_NOT_NAMES = frozenset({"arre", "arey", "acha", "accha", "achha", "haan", "chalo", "please", "suno", "oye", "bas"})
+_NOT_NAMES = frozenset({"arre", "arey", "acha", "accha", "achha", "haan", "chalo", "please", "suno", "oye", "bas",
+                        "then",
+                        "first", "quickly", "now"})
 
 
 def from_hindi(text: str) -> str:

@@ -18,7 +18,7 @@ def words(text: str) -> list[str]:
 # Said before or around a request without changing it.
 FILLER = re.compile(
     r"^(?:(?:(?:just|wait) a (?:sec|second|minute|moment|mo)|please|abeg|kindly|now|ok|okay|so|oh|well|right|alright|"
-    r"also|instead|first of all|to (?:begin|start) with|first|"
+    r"also|instead|first of all|to (?:begin|start) with|first|quickly|"
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|i mean|i meant|"
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|ah|ahh|aah|aw|k|like|what am i saying|what was i thinking|silly me|y'all|yo|"

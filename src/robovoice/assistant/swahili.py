@@ -19,7 +19,7 @@ _MARKER = re.compile(r"\b(?:tafadhali|halafu|alafu|kisha|kwanza|uende|nenda|enda
                      r"nipigie|washa|zima|hiyo|hii|sasa|hapa|hapo|usi(?!ng?\b)\w{2,}|unaweza|ebu|hebu|haraka|kwenye|mpaka|"
                      r"hadi|jikoni|chumbani|bafuni|sebuleni|asante|sawa|rudi|urudi|njoo|uje|chaji|kuchaji|ukachaji|"
                      r"baadaye|kesho|bado|hapana|ndio|ndiyo|maze|niaje|msee|buda|manze|elekea|uelekee|ingia|simama|"
-                     r"subiri|ngoja|maliza|nataka|tafadhalini|shangazi|mjomba)\b",
+                     r"subiri|ngoja|maliza|nataka|tafadhalini|shangazi|mjomba|naomba|projekta|wacha|iwashe|kuja)\b",
                      re.IGNORECASE)
 
 _PLACES = r"(?:living room|front door|charging dock|kitchen|bedroom|bathroom|hallway)"
@@ -27,7 +27,7 @@ _SOMEWHERE = r"(?=\s+(?!(?:sasa|tu|hapa|hapo|basi|haraka)\b)\w)"  # a place said
 _TO = r"(?:\s+(?:kwa|kwenye|mpaka|hadi|pale|ndani\s+ya|huko|hapo|kule))*"
 _GO_WORDS = r"(?:nenda|enda|uende|ende|kaende|kwenda|elekea|uelekee|ukaende|genda|dunda)"  # genda: Luganda
 _GO = r"\b" + _GO_WORDS + r"\b"
-_COME = r"\b(?:njoo|uje|kuja|ukuje|jangu)\b"  # jangu: Luganda
+_COME = r"\b(?:njoo|uje|kuja|ukuje|jangu)\b"  # (kuja, "to come", is said for "come!" too)  # jangu: Luganda
 _BACK = r"\b(?:rudi|urudi|kurudi|rudia)\b"
 _CALL = (r"\b(?:(?:ku)?piga\s+(?:video\s+call|video|simu)(?:\s+ya\s+video)?(?:\s+(?:kwa|na))?|m?pigie(?:\s+simu)?|"
          r"u?(?:ni|m|wa)?pigi[ae](?:\s+simu)?|kupigia(?:\s+simu)?)\b")
@@ -44,9 +44,9 @@ _RULES = rules((
     # (text test v85) "ungeweza …?" (could you), "kabla ya ku…" (before you …), "ukishafika X" (once you're
     # in X), "ila" (but), "uone kama" (and see if), "achana nayo" (leave it), "ngoja kwanza" (hold on)
     (r"\b(?:ungeweza|ungeza|ungependa)\b(?:\s+ku(?=\w))?", "could you "),
-    (r"\bkabla\s+ya\s+ku", "before you "), (r"\bkabla\s+ya\b", "before"),
+    (r"\bkabla\s+ya\s+ku", "before you "), (r"\bkabla\s+ya\b(?!\s+(?:hapo|hiyo|hayo)\b)", "before"),
     (r"\buki(?:sha)?fika\b(?:\s+(?:kwa|kwenye))?", "once you're in the"), (r"\bila\b", "but"),
-    (r"\b(?:u|ka)?(?:one|angalie|cheki)\s+kama\b", ", and check if"), (r"\bkama\b", "if"),
+    (r"\b(?:u|ka|uka)?(?:one|angalie|cheki)\s+kama\b", ", and check if"), (r"\bkama\b", "if"),
     (r"\b(?:achana|acha)\s+(?:na\s*(?:yo|hiyo|hio)|nayo|hiyo|hio)\b", "leave it"),
     (r"\b(?:ngoja|subiri)\s+(?:kwanza|kidogo)\b", "hold on"),
     (r"\bbaada\s+ya\s+chakula\s+cha\s+(?:mchana|asubuhi)\b", "after lunch"),
@@ -56,6 +56,14 @@ _RULES = rules((
     (r"\b(?:hiyo\s+|hii\s+)?safari\s+(?:yako\s+)?(?:i|u|ku)?cancel\w*", "cancel the trip"),
     (r"\b(?:i|u|ku)(cancel|stop|end|switch|call|check)\b", r"\1"), (r"\bfasta\b", "quickly"),
     (r"\bnilipo\b", "where I am"), (r"\bhaya\b", "okay"),
+    # (text test v87) "naomba u…" (I ask you to), "wacha tu, si lazima" (leave it, no need), "chap chap",
+    # "kabla ya hapo" (before that), "kwanza … pili … mwisho" (first, second, last), "ukimaliza" (then)
+    (r"\bnaomba\b", "please"), (r"\b(?:wacha|acha)\s+tu\b", "never mind"), (r"\bsio?\s+lazima\b", "no need"),
+    (r"\bchap\s+chap\b", "quickly"), (r"\b(?:lakini\s+)?kabla\s+ya\s+(?:hapo|hiyo|hayo)\b", "but before that"),
+    (r"\bpili\b", "then"), (r"\b(?:na\s+)?mwisho\b", "and finally"), (r"\bfanya\s+hivi\s*:?", ""),
+    (r"\b(?:alafu|halafu)?\s*ukimaliza\b", " then"), (r"\blakini\b", "but"),
+    (r"\b(?:u|ku)?kate\b(?:\s+(?:hiyo|hii))?\s+(?:simu|call)\b", "end the call"),
+    (r"\bbinti\s+yangu\b", "my daughter"), (r"\bmwanangu\b", ""),
     # its negative, a prefix: "usiende", "usipige simu Ben", "usiwashe projector", "usikate call"
     (r"\busi(?:ende|elekee|ingie)\b" + _TO, "don't go to the"), (r"\busirudi\b" + _TO, "don't go back to the"),
     (r"\busije\b", "don't come"), (r"\busi(?:pige|mpigie)(?:\s+simu)?(?:\s+(?:kwa|na))?\b", "don't call"),
@@ -67,11 +75,11 @@ _RULES = rules((
     (r"\bsi\s+sasa\b|\bsio\s+sasa\b", "not now"), (r"\bbado\b", "not yet"), (r"\bhapana\b", "no"),
     (r"\bsitaki\b", "I don't want"), (r"\b(?:ni)?nataka\b", "I want"),
     # calls: "piga simu Uncle Ben", "mpigie Anna", "kata hiyo call"
-    (_CALL + r"\s*" + _WHO_TITLE + r"?", "call "),
+    (_CALL + r"\s*" + _WHO_TITLE + r"?", "call "), (r"\bpiga\s+(?=(?-i:[A-Z]))", "call "),
     (r"\b(?:kata|maliza|zima)\s+(?:hiyo\s+|hii\s+)?(?:call|simu)\b", "end the call"),
     # the projector: "washa projector", "zima hiyo projector"
-    (r"\b(?:washa|kuwasha|uwashe|wezesha)\b(?:\s+(?:hiyo|hii))?", "turn on the"),
-    (r"\b(?:zima|kuzima|uzime)\b(?:\s+(?:hiyo|hii))?", "turn off the"),
+    (r"\b(?:washa|kuwasha|uwashe|iwashe|wezesha)\b(?:\s+(?:hiyo|hii))?", "turn on the"),
+    (r"\b(?:zima|kuzima|uzime|izime)\b(?:\s+(?:hiyo|hii))?", "turn off the"),
     # charging: "uende ukachaji", "enda kuchaji", "rudi kwa chaja"
     (r"\b(?:" + _GO_WORDS + r"\s+)?\b(?:ukachaji|kuchaji|kachaji|uchaji|jichaji|chaji)\b", " go charge"),
     (r"\b(?:chaja|charger)\b", "charging dock"),
@@ -94,6 +102,7 @@ _ROOMS = {"jikoni": "kitchen", "jiko": "kitchen", "sebuleni": "living room", "se
           "chumbani": "bedroom", "chumba cha kulala": "bedroom", "bafuni": "bathroom", "chooni": "bathroom",
           "choo": "bathroom", "msalani": "bathroom", "mlangoni": "front door", "mlango wa mbele": "front door",
           "korido": "hallway", "ukumbini": "hallway"}
+_ROOMS.update({"projekta": "projector", "projecta": "projector"})  # the projector as Swahili spells it
 _ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
 # what says nothing asked: greetings and Sheng's address words, "hapa"/"hapo" (here, there) left over
 _PARTICLES = re.compile(r"\s*\b(?:maze|manze|niaje|msee|buda|mzee|bro|sasa|hapa|hapo|huko|kule|hiyo|hii|tu|ile|yile|"
