@@ -438,6 +438,21 @@ async def test_a_claim_with_no_call_at_all_is_asked_for_once_more() -> None:
     assert not result.calls and len(server.requests) == 2  # once only
 
 
+async def test_words_that_answer_a_request_in_another_language_ask_for_it_once_more() -> None:
+    """Text tests v85 and v87: "Zima hiyo projector" got "Zima, hiyo! How can I assist you
+    today?" and "Kata simu sasa" nothing done. Said in another language, the model's words are
+    no refusal of a request it did not understand: it is asked for once more, in the reading's
+    English, offered the actions that English names; in English, words that claim nothing stay."""
+    result, server = await scripted_turn(
+        [TextReply("Zima, hiyo! How can I assist you today?"), call("set_projector_power", on=False),
+         TextReply("The projector is off.")], "Zima hiyo projector, imeniboo.")
+    assert [c.name for c in result.calls] == ["set_projector_power"]
+    assert server.requests[1].last_user_text == "Now do the next thing I asked: turn off the projector."
+    assert server.requests[1].tool_names == ["set_projector_power"]
+    result, server = await scripted_turn([TextReply("How can I assist you today?")], "Turn the projector off, love.")
+    assert not result.calls and len(server.requests) == 1
+
+
 async def test_a_turn_ended_with_nothing_to_say_is_asked_for_once_more() -> None:
     """Text test v63: the model read "Kitchen first, and once you're there, switch on the
     projector." back (never spoken) and called nothing. Nothing said and nothing called on a

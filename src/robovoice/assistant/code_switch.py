@@ -59,6 +59,12 @@ _SPANISH = rules((
 ))
 
 
+def translated(text: str) -> bool:
+    """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili or Spanish words
+    that `in_english` puts in English (a dialect of English is not another language)."""
+    return from_swahili(from_hindi(from_tagalog(text))) != text or bool(_ANY_SPANISH.search(text))
+
+
 def in_english(text: str) -> str:
     """`text` with the requests, order words and rooms said in Tagalog, Hindi or Spanish put in English,
     and a dialect's turns said as standard English says them (`dialects.as_standard`)."""

@@ -224,7 +224,7 @@ class Assistant:
                     messages.append(next_step())
                     continue
             if not requested and not (calls or nudged) and step < max_steps - 2 and (
-                    left := turn_rules.claimed_unacted(asked, lookups, tools, text)) is not None:
+                    left := turn_rules.claimed_unacted(asked, lookups, tools, text, user)) is not None:
                 nudged, only = True, left[1]  # "I am now at the kitchen." (or nothing) with no call: asked once more
                 messages.append(ChatMessage("user", step_hint(left[0], False, first=False)))
                 continue

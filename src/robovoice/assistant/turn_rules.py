@@ -7,8 +7,9 @@ from __future__ import annotations
 import json
 from collections.abc import Collection, Mapping, Sequence
 
+from robovoice.assistant.code_switch import translated
 from robovoice.assistant.events import ToolCalled, ToolReturned
-from robovoice.assistant.fit import fits, listed, named_whole
+from robovoice.assistant.fit import fits, listed, named_whole, names
 from robovoice.assistant.gate import NOT_REQUESTED, said_after
 from robovoice.assistant.hypothetical import asked_as_question, asks_ever
 from robovoice.assistant.lexicon import words
@@ -84,16 +85,26 @@ def _first_naming(asked: Sequence[str], lookups: Sequence[bool],
 
 
 def claimed_unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequence[ToolSpec],
-                    text: str) -> tuple[str, list[str]] | None:
+                    text: str, said: object = None) -> tuple[str, list[str]] | None:
     """The model called nothing and answered in words that claim an action ("I am now at the
     kitchen." for "Three jobs. Kitchen first, then ring Ben."): the first thing asked that names
     a value an action lists, and those actions, as `unacted` gives them; it is asked for once
     more, offered only those, and the check before acting still decides. So is a turn the model
     ended with nothing to say ("Kitchen first, and once you're there, switch on the projector."
     read back, which is never spoken: text test v63). None when the words claim nothing: a
-    refusal in words is the model's own second check, and is kept."""
+    refusal in words is the model's own second check, and is kept, unless the request was said in
+    another language (`said`, the person's words: `code_switch.translated`): the small model's
+    words then answer what it did not understand ("Zima, hiyo! How can I assist you today?" for
+    "Zima hiyo projector", text test v85), so the first thing asked is asked once more, as the
+    reading put it in English, offered the actions it names."""
     said_nothing = not text.strip()
-    return _first_naming(asked, lookups, specs) if said_nothing or claimed_action_in(text) is not None else None
+    if said_nothing or claimed_action_in(text) is not None:
+        return _first_naming(asked, lookups, specs)
+    if not isinstance(said, str) or not translated(said):
+        return None
+    return _first_naming(asked, lookups, specs) or next(
+        ((step, acts) for step, lookup in zip(asked, lookups, strict=True)
+         if not lookup and (acts := [s.name for s in specs if not s.read_only and names(step, s.name, {})])), None)
 
 
 def naming(step: str, specs: Sequence[ToolSpec]) -> list[str]:
