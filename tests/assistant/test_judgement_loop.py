@@ -451,6 +451,9 @@ async def test_words_that_answer_a_request_in_another_language_ask_for_it_once_m
     assert server.requests[1].tool_names == ["set_projector_power"]
     result, server = await scripted_turn([TextReply("How can I assist you today?")], "Turn the projector off, love.")
     assert not result.calls and len(server.requests) == 1
+    # a request said as a question keeps the model's own answer ("can you turn on the projector?")
+    result, server = await scripted_turn([TextReply("Yes, I can switch it on for you.")], "Unaweza kuwasha projector?")
+    assert not result.calls and len(server.requests) == 1
 
 
 async def test_a_turn_ended_with_nothing_to_say_is_asked_for_once_more() -> None:

@@ -104,7 +104,8 @@ def claimed_unacted(asked: Sequence[str], lookups: Sequence[bool], specs: Sequen
         return None
     return _first_naming(asked, lookups, specs) or next(
         ((step, acts) for step, lookup in zip(asked, lookups, strict=True)
-         if not lookup and (acts := [s.name for s in specs if not s.read_only and names(step, s.name, {})])), None)
+         if not lookup and not asked_as_question(step)  # a request said as a question keeps the model's answer
+         and (acts := [s.name for s in specs if not s.read_only and names(step, s.name, {})])), None)
 
 
 def naming(step: str, specs: Sequence[ToolSpec]) -> list[str]:
