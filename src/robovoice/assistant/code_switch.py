@@ -59,16 +59,21 @@ _SPANISH = rules((
 ))
 
 
+def _other_languages(text: str) -> str:
+    """`text` with its Tagalog, Hindi, Urdu, Punjabi and Swahili put in English."""
+    return from_swahili(from_hindi(from_tagalog(text)))
+
+
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili or Spanish words
     that `in_english` puts in English (a dialect of English is not another language)."""
-    return from_swahili(from_hindi(from_tagalog(text))) != text or bool(_ANY_SPANISH.search(text))
+    return _other_languages(text) != text or bool(_ANY_SPANISH.search(text))
 
 
 def in_english(text: str) -> str:
     """`text` with the requests, order words and rooms said in Tagalog, Hindi or Spanish put in English,
     and a dialect's turns said as standard English says them (`dialects.as_standard`)."""
-    text = from_swahili(from_hindi(from_tagalog(text)))
+    text = _other_languages(text)
     text = as_standard(_HINDI_OFF.sub("off", _HINDI_ON.sub("on", text)))  # "Light band karo": off
     spanish = bool(_ANY_SPANISH.search(text))
     text = rewrite(text, _SPANISH)

@@ -18,7 +18,7 @@ from robovoice.assistant.dialects import rewrite, rules
 
 _MARKER = re.compile(r"\b(?:karo|kardo|kar\s+(?:do|de|dein|dijiye|dena|lo)|karna|karein|kijiye|jao|jaao|jaiye|"
                      r"chalao|chala\s+(?:do|de|dein)|chalo|milao|mila\s+(?:do|de|dein)|lagao|laga\s+(?:do|de|dein)|"
-                     r"bulao|ruko|ruk\s+ja\w*|rukiye|pehle|pahle|pehlan|phir|uske|iske|nahin|nahi|zara|jaldi|kya|hai|"
+                     r"bulao|ruko|ruk\s+ja\w*|pehle|pahle|pehlan|phir|uske|iske|nahin|nahi|zara|kya|hai|"
                      r"hain|aao|aaja|aa\s+ja|wapas|vapas|abhi|khatam|kaat\w*|bujha\w*|chalu|puttar|"
                      r"wahan|udhar|idhar|sakte|sakti|sakta|shaam|chal|othon|uthon|jaake|dekho|karne|tashreef|"
                      r"farmaiye|mudiye|rukiye|jaldi|milaiye|lagaiye|bulaiye|chalaiye|dijiye)\b",
@@ -27,15 +27,20 @@ _MARKER = re.compile(r"\b(?:karo|kardo|kar\s+(?:do|de|dein|dijiye|dena|lo)|karna
 # ongoing thing ("woh ghar ja rahi hai"): neither asks the robot
 _NOT_ASKED = r"(?!\s+(?:hai|hain|tha|thi|hoga|hogi|padega|padegi|chahiye|raha|rahi|rahe|chuka|chuki|chuke))"
 
+
+def _asks(forms: str) -> str:
+    """A verb's forms, unless a need or a goings-on follows (`_NOT_ASKED`)."""
+    return "(?:" + forms + ")" + _NOT_ASKED
+
+
 _GIVE = r"(?:\s+(?:do|de|dein|den|dijiye|dijie|dena|diyo|lo|lein|na))?"
-_DO = (r"(?:karo|kardo|karde|karna|karein|karen|kijiye|kari|karin|kareen|farmaiye|farmayen|farmaaiye|kar" + _GIVE +
-       r")")
-_DO = "(?:" + _DO + ")" + _NOT_ASKED
+_DO = _asks(r"karo|kardo|karde|karna|karein|karen|kijiye|kari|karin|kareen|farmaiye|farmayen|farmaaiye|kar" + _GIVE)
 # what follows the thing before the verb: a postposition, "bhi" (too), "ek" (a)
 _POST = (r"(?:\s+(?:ko|nu|noo|se|tak|mein|me|main|vich|wich|pe|par|te|wal|val|ki\s+taraf|ke\s+paas|bhi|ek|zara|"
          r"jaldi|abhi|turant|fauran|please))*")
 _PLACE = (r"((?:the\s+)?(?:living room|front door|charging dock|drawing room|"
-          r"(?!(?:aa|ja|jaa|chale|chala|chali|wapas|vapas|wahan|yahan|udhar|idhar|and|the|to|go|come|then|arre|arey|oye|haan|yeh|woh)\b)(?<!['\u2019])[a-z]{3,}))")
+          r"(?!(?:aa|ja|jaa|chale|chala|chali|wapas|vapas|wahan|yahan|udhar|idhar|and|the|to|go|come|then|arre|"
+          r"arey|oye|haan|yeh|woh)\b)(?<!['\u2019])[a-z]{3,}))")
 # someone to call: a title and a name, or a pronoun ("usko": him, her)
 # (what is said of them before is left out: "saath wali Clara", the Clara next door; "meri beti Anna")
 _WHO = (r"(?:(?:saath|bagal|padosi|padosan|meri|mera|mere|apni|apne|apna|wali|wala|vali|vala|beti|beta)\s+)*"
@@ -43,24 +48,18 @@ _WHO = (r"(?:(?:saath|bagal|padosi|padosan|meri|mera|mere|apni|apne|apna|wali|wa
         r"masi|mausi|phuphi)\s+)?(?!(?:ko|nu|se|bhi|ji|jee)\b)\w+)"
         r"(?:\s+(?:sahib|saab|sahab|ji|jee|aunty|auntie|uncle|bhaiya|bhai|didi|di|beta|beti|bitiya))*")
 _CALL_NOUN = r"(?:video\s+wala\s+phone|video\s+call|video|phone|call|ring|dial)(?:\s+(?:pe|par))?"
-_CONNECT = r"(?:milao|mila" + _GIVE + r"|milana|milaiye|lagao|laga" + _GIVE + r"|lagana|lagaiye|bulao|bula" + \
-    _GIVE + r"|bulana|bulaiye|la" + _GIVE + r")"
-_CONNECT = "(?:" + _CONNECT + ")" + _NOT_ASKED
-_ON = (r"(?:chalao|chala" + _GIVE + r"|chalana|chalaiye|lagao|laga" + _GIVE + r"|lagana|jalao|jala" + _GIVE +
-       r"|kholo|khol" + _GIVE + r"|(?:chalu|chaalu|on|start|roshan)\s+" + _DO + r")")
-_ON = "(?:" + _ON + ")" + _NOT_ASKED
-_OFF = r"(?:bujhao|bujha" + _GIVE + r"|(?:band|bandh|bund|off)\s+" + _DO + r"|hatao|hata" + _GIVE + r")"
-_OFF = "(?:" + _OFF + ")" + _NOT_ASKED
-_END = (r"(?:khatam\s+" + _DO + r"|kaato|kato|kaat" + _GIVE + r"|kaatna|katna|cut\s+" + _DO +
-        r"|band\s+" + _DO + r"|rakh" + _GIVE + r"|rakho)")
-_END = "(?:" + _END + ")" + _NOT_ASKED
+_CONNECT = _asks(r"milao|mila" + _GIVE + r"|milana|milaiye|lagao|laga" + _GIVE + r"|lagana|lagaiye|bulao|bula" + _GIVE +
+                 r"|bulana|bulaiye|la" + _GIVE)
+_ON = _asks(r"chalao|chala" + _GIVE + r"|chalana|chalaiye|lagao|laga" + _GIVE + r"|lagana|jalao|jala" + _GIVE +
+            r"|kholo|khol" + _GIVE + r"|(?:chalu|chaalu|on|start|roshan)\s+" + _DO)
+_OFF = _asks(r"bujhao|bujha" + _GIVE + r"|(?:band|bandh|bund|off)\s+" + _DO + r"|hatao|hata" + _GIVE)
+_END = _asks(r"khatam\s+" + _DO + r"|kaato|kato|kaat" + _GIVE + r"|kaatna|katna|cut\s+" + _DO + r"|band\s+" + _DO +
+             r"|rakh" + _GIVE + r"|rakho")
 # (Urdu's courtesy: "tashreef le jaiye", take your honoured self there; "ki taraf mudiye": turn towards)
-_GO = (r"(?:(?:chale|chala|chali)\s+(?:jao|ja|jaa|jana|jaana)|tashreef\s+le\s+(?:jaiye|jaaiye|jayen|chaliye|chalein)|"
-       r"jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa|chalo|chaliye|chal|mudiye|mudo|mud\s+jao|ho\s+aaiye|ho\s+aao)")
-_GO = "(?:" + _GO + ")" + _NOT_ASKED
-_COME = (r"(?:aao|aaiye|aa\s+jao|aa\s+jana|aa\s+ja|aaja|aajao|aa\s+jaiye|aana|tashreef\s+(?:laiye|le\s+aaiye)|"
-         r"aa(?=\s*(?:[,.!?]|$|\s+(?:jaldi|zara|na)\b)))")
-_COME = "(?:" + _COME + ")" + _NOT_ASKED
+_GO = _asks(r"(?:chale|chala|chali)\s+(?:jao|ja|jaa|jana|jaana)|tashreef\s+le\s+(?:jaiye|jaaiye|jayen|chaliye|chalein)|"
+            r"jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa|chalo|chaliye|chal|mudiye|mudo|mud\s+jao|ho\s+aaiye|ho\s+aao")
+_COME = _asks(r"aao|aaiye|aa\s+jao|aa\s+jana|aa\s+ja|aaja|aajao|aa\s+jaiye|aana|tashreef\s+(?:laiye|le\s+aaiye)|"
+              r"aa(?=\s*(?:[,.!?]|$|\s+(?:jaldi|zara|na)\b))")
 _VERB_WORD = r"(?:\w+(?:o|na|iye|ein|en|ao)|kar|ja|jaa|aa|chal|ruk|la)\b"
 
 _RULES = rules((

@@ -16,8 +16,9 @@ import re
 from robovoice.assistant.dialects import rewrite, rules
 
 _MARKER = re.compile(r"\b(?:tafadhali|halafu|alafu|kisha|kwanza|uende|nenda|enda|kwenda|ende|piga|simu|mpigie|"
-                     r"nipigie|washa|zima|hiyo|hii|sasa|hapa|hapo|usi(?!ng?\b)\w{2,}|unaweza|ebu|hebu|haraka|kwenye|mpaka|"
-                     r"hadi|jikoni|chumbani|bafuni|sebuleni|asante|sawa|rudi|urudi|njoo|uje|chaji|kuchaji|ukachaji|"
+                     r"nipigie|washa|zima|hiyo|hii|sasa|hapa|hapo|usi(?!ng?\b)\w{2,}|unaweza|ebu|hebu|haraka|kwenye|"
+                     r"mpaka|hadi|jikoni|chumbani|bafuni|sebuleni|asante|sawa|rudi|urudi|njoo|uje|chaji|kuchaji|"
+                     r"ukachaji|"
                      r"baadaye|kesho|bado|hapana|ndio|ndiyo|maze|niaje|msee|buda|manze|elekea|uelekee|ingia|simama|"
                      r"subiri|ngoja|maliza|nataka|tafadhalini|shangazi|mjomba|naomba|projekta|wacha|iwashe|kuja)\b",
                      re.IGNORECASE)
@@ -27,7 +28,7 @@ _SOMEWHERE = r"(?=\s+(?!(?:sasa|tu|hapa|hapo|basi|haraka)\b)\w)"  # a place said
 _TO = r"(?:\s+(?:kwa|kwenye|mpaka|hadi|pale|ndani\s+ya|huko|hapo|kule))*"
 _GO_WORDS = r"(?:nenda|enda|uende|ende|kaende|kwenda|elekea|uelekee|ukaende|genda|dunda)"  # genda: Luganda
 _GO = r"\b" + _GO_WORDS + r"\b"
-_COME = r"\b(?:njoo|uje|kuja|ukuje|jangu)\b"  # (kuja, "to come", is said for "come!" too)  # jangu: Luganda
+_COME = r"\b(?:njoo|uje|kuja|ukuje|jangu)\b"  # kuja ("to come") is said for "come!" too; jangu: Luganda
 _BACK = r"\b(?:rudi|urudi|kurudi|rudia)\b"
 _CALL = (r"\b(?:(?:ku)?piga\s+(?:video\s+call|video|simu)(?:\s+ya\s+video)?(?:\s+(?:kwa|na))?|m?pigie(?:\s+simu)?|"
          r"u?(?:ni|m|wa)?pigi[ae](?:\s+simu)?|kupigia(?:\s+simu)?)\b")
@@ -101,8 +102,8 @@ _RULES = rules((
 _ROOMS = {"jikoni": "kitchen", "jiko": "kitchen", "sebuleni": "living room", "sebule": "living room",
           "chumbani": "bedroom", "chumba cha kulala": "bedroom", "bafuni": "bathroom", "chooni": "bathroom",
           "choo": "bathroom", "msalani": "bathroom", "mlangoni": "front door", "mlango wa mbele": "front door",
-          "korido": "hallway", "ukumbini": "hallway"}
-_ROOMS.update({"projekta": "projector", "projecta": "projector"})  # the projector as Swahili spells it
+          "korido": "hallway", "ukumbini": "hallway",
+          "projekta": "projector", "projecta": "projector"}  # and the projector as Swahili spells it
 _ROOM = re.compile(r"\b(" + "|".join(sorted(_ROOMS, key=len, reverse=True)) + r")\b", re.IGNORECASE)
 # what says nothing asked: greetings and Sheng's address words, "hapa"/"hapo" (here, there) left over
 _PARTICLES = re.compile(r"\s*\b(?:maze|manze|niaje|msee|buda|mzee|bro|sasa|hapa|hapo|huko|kule|hiyo|hii|tu|ile|yile|"
@@ -115,7 +116,8 @@ _PARTICLES = re.compile(r"\s*\b(?:maze|manze|niaje|msee|buda|mzee|bro|sasa|hapa|
 _TALK = re.compile(r"[^,.;!?\u2026]*\b(?:(?:ni|tu|wa|a|u|m|i|ki|ku|li|ya|zi)(?:na|li|ta|me)\w{3,}|(?:ni)?nataka)\b"
                    r"[^,.;!?\u2026]*", re.IGNORECASE)
 _ASKS = re.compile(r"\b(?:go|call|turn|end|stop|switch|don't|please|can|later|tomorrow|uende|nenda|enda|rudi|njoo|"
-                   r"piga|\w*pigi[ae]|washa|zima|kata|maliza|usi(?!ng?\b)\w{2,}|tafadhali|ebu|hebu|unaweza|kisha|halafu|alafu)\b",
+                   r"piga|\w*pigi[ae]|washa|zima|kata|maliza|usi(?!ng?\b)\w{2,}|tafadhali|ebu|hebu|unaweza|kisha|"
+                   r"halafu|alafu)\b",
                    re.IGNORECASE)
 
 
