@@ -90,6 +90,25 @@ def test_kill_9_while_three_threads_write_leaves_at_most_a_torn_last_line(tmp_pa
     assert [s.torn for s in reading.skipped][-1] is False  # the old torn line is now a damaged one
 
 
+def test_a_peer_rotating_while_we_open_adds_no_empty_line(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # A peer rotates between our open and the torn-line check, and its fresh file is shorter and
+    # mid-record: the check must read the file we opened (it once wrote "\n" into the rotated one).
+    path = tmp_path / "audit.jsonl"
+    path.write_bytes(b'{"tool": "old"}\n' * 10)
+    real_open = AuditLog._open
+
+    def open_then_peer_rotates(target: Path) -> int:
+        fd = real_open(target)
+        os.replace(target, rotated_path(target, 1))
+        target.write_bytes(b'{"to')  # the peer's fresh file, a record half written
+        return fd
+
+    monkeypatch.setattr(AuditLog, "_open", staticmethod(open_then_peer_rotates))
+    AuditLog(path).close()
+    assert rotated_path(path, 1).read_bytes() == b'{"tool": "old"}\n' * 10
+    assert path.read_bytes() == b'{"to'
+
+
 def test_two_processes_rotate_under_load_and_kill_9_loses_nothing_complete(tmp_path: Path) -> None:
     path = tmp_path / "audit.jsonl"
     writers = [_writer(path, name, max_bytes=60_000, keep=1000) for name in ("a", "b")]

@@ -135,8 +135,9 @@ class AuditLog:
 
     @staticmethod
     def _open(path: Path) -> int:
-        # O_APPEND: every write lands at the end, whatever other writers do.
-        return os.open(path, os.O_WRONLY | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC, 0o600)
+        # O_APPEND: every write lands at the end, whatever other writers do. Readable too, so
+        # the torn-line check reads the file this descriptor has, not whatever `path` is now.
+        return os.open(path, os.O_RDWR | os.O_CREAT | os.O_APPEND | os.O_CLOEXEC, 0o600)
 
     def _end_torn_line(self, path: Path) -> None:
         """A writer killed mid-line left the file without a final newline: end that line, so
@@ -145,10 +146,9 @@ class AuditLog:
         size = os.fstat(self._fd).st_size
         if size == 0:
             return
-        with path.open("rb") as f:
-            f.seek(size - 1)
-            last = f.read(1)
-        if last != b"\n":
+        # Through our descriptor: a peer may have rotated `path` since we opened it, and a new,
+        # shorter file there read as torn put an empty line into the rotated one (CI, stop 51).
+        if os.pread(self._fd, 1, size - 1) != b"\n":
             os.write(self._fd, b"\n")
             log.warning("the audit log %s ended with an incomplete line (a writer was killed mid-record); "
                         "readers skip it", path)
