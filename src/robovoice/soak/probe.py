@@ -2,9 +2,9 @@
 
 Cheap enough to take every few simulated minutes (tracemalloc would slow the whole run):
 RSS from /proc/self/statm (and without file-backed pages, RssAnon), `sys.getallocatedblocks()`
-for the Python heap, `gc.get_count()` and `len(gc.get_objects())` (after a full collection, so
-garbage is not counted), open file descriptors from /proc/self/fd, `threading.active_count()`,
-`len(asyncio.all_tasks())`.
+for the Python heap, `gc.get_count()` and the number of gc-tracked objects (after a full
+collection, so garbage is not counted; see `tracked_objects`), open file descriptors from
+/proc/self/fd, `threading.active_count()`, `len(asyncio.all_tasks())`.
 """
 
 from __future__ import annotations
@@ -69,12 +69,26 @@ def open_fds() -> int:
         return -1
 
 
+def tracked_objects() -> int:
+    """How many objects the gc tracks, without holding them: `len(gc.get_objects())` keeps a
+    reference to each while another thread may switch in, and a tuple being built from a
+    generator there fails with "SystemError: bad argument to internal function" (CPython
+    gh-39117; the soak's speech thread, CI at stop 51). Freezing moves every tracked object to
+    the permanent generation and counts it in C; after a full collection all of them are in
+    the oldest generation, where unfreezing puts them back."""
+    gc.freeze()
+    try:
+        return gc.get_freeze_count()
+    finally:
+        gc.unfreeze()
+
+
 def take_sample(sim_s: float, wall_s: float) -> Sample:
     """Collect garbage first so the counts are what is alive, then look."""
     gc.collect()
     counts = gc.get_count()
     return Sample(round(sim_s, 1), round(wall_s, 1), round(rss_mib(), 2), sys.getallocatedblocks(),
-                  len(gc.get_objects()), (counts[0], counts[1], counts[2]), open_fds(), threading.active_count(),
+                  tracked_objects(), (counts[0], counts[1], counts[2]), open_fds(), threading.active_count(),
                   len(asyncio.all_tasks()), round(rss_anon_mib(), 2))
 
 
