@@ -73,9 +73,9 @@ def tracked_objects() -> int:
     """How many objects the gc tracks, without holding them: `len(gc.get_objects())` keeps a
     reference to each while another thread may switch in, and a tuple being built from a
     generator there fails with "SystemError: bad argument to internal function" (CPython
-    gh-39117; the soak's speech thread, CI at stop 51). Freezing moves every tracked object to
-    the permanent generation and counts it in C; after a full collection all of them are in
-    the oldest generation, where unfreezing puts them back."""
+    gh-39117; the soak's speech thread, in a full test run here). Freezing moves every tracked
+    object to the permanent generation and counts it in C; after a full collection all of them
+    are in the oldest generation, where unfreezing puts them back."""
     gc.freeze()
     try:
         return gc.get_freeze_count()
