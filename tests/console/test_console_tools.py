@@ -3,12 +3,14 @@ through MCP tools marked ``"for_model": false``; the assistant still sees exactl
 
 from __future__ import annotations
 
+import asyncio
 import sys
 
 import httpx
 
 from robovoice.assistant.connect import connect_robot
 from robovoice.config import RobotConfig
+from robovoice.console.watch import WATCHED, RobotWatcher
 from robovoice.manifest.model import FOR_MODEL_META_KEY
 
 from .console_testkit import BOUND_S, SIM, running_console
@@ -61,3 +63,29 @@ async def test_a_robot_behind_another_processes_mcp_server_is_shown_the_same() -
         assert state["pose"]["nearest_place"] == "charging dock" and len(state["map"]["places"]) == 8
         called = (await http.post("/api/call", json={"name": "navigate_to", "arguments": {"target": "hallway"}})).json()
         assert not called["is_error"] and called["structured"]["arrived"] == "hallway"
+
+
+async def test_a_drive_seen_only_once_it_ended_still_leaves_its_path() -> None:
+    """At speed 50 a drive can begin and end between two pose reads (CI saw an empty path):
+    the path then runs from where the robot last stood to where it stands now."""
+    async with connect_robot(SIM) as robot:
+        watcher = RobotWatcher(robot.tools.client)
+        pose = next(w for w in WATCHED if w.key == "pose")
+        await watcher.read(pose)
+        start = watcher.state()["pose"]
+        assert watcher.state()["path"] == [] and start["moving"] is False
+        done = await robot.tools.client.call_tool("navigate_to", {"target": "kitchen"})
+        assert not done.is_error
+        async with asyncio.timeout(BOUND_S):  # the pose snapshot lags the drive's result a little
+            while True:
+                await watcher.read(pose)
+                now = watcher.state()["pose"]
+                if now["nearest_place"] == "kitchen" and not now["moving"]:
+                    break
+                await asyncio.sleep(0.05)
+        path = watcher.state()["path"]
+        assert path[0] == [round(start["x"], 2), round(start["y"], 2)]
+        assert len(path) >= 2 and path[-1] == [round(now["x"], 2), round(now["y"], 2)]
+        assert abs(path[-1][0] - 2.0) < 0.1 and abs(path[-1][1] - 6.5) < 0.1  # the kitchen
+        await watcher.read(pose)  # standing still afterwards adds nothing
+        assert watcher.state()["path"] == path

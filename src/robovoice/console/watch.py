@@ -85,6 +85,7 @@ class RobotWatcher:
         self._errors: dict[str, str] = {}
         self._path: deque[tuple[float, float]] = deque(maxlen=MAX_PATH_POINTS)
         self._moving = False
+        self._last_point: tuple[float, float] | None = None
         self.available: set[str] = set()
         self.rounds = 0
 
@@ -115,12 +116,17 @@ class RobotWatcher:
         x, y, moving = pose.get("x"), pose.get("y"), bool(pose.get("moving"))
         if not isinstance(x, int | float) or not isinstance(y, int | float):
             return
-        if moving and not self._moving:
+        point = (round(float(x), 2), round(float(y), 2))
+        before, self._last_point = self._last_point, point
+        # A drive that began, or even ended, between two reads (a short one, a loaded machine)
+        # still starts its path where the robot was last seen standing.
+        jumped = not moving and not self._moving and before is not None and point != before
+        if (moving and not self._moving) or jumped:
             self._path.clear()  # a new drive: a new path
-        if moving or (self._moving and not moving):
-            point = (round(float(x), 2), round(float(y), 2))
-            if not self._path or self._path[-1] != point:
-                self._path.append(point)
+            if before is not None:
+                self._path.append(before)
+        if (moving or self._moving or jumped) and (not self._path or self._path[-1] != point):
+            self._path.append(point)
         self._moving = moving
 
     async def run(self) -> None:
