@@ -14,6 +14,7 @@ import re
 
 from robovoice.assistant.dialects import as_standard, rewrite, rules
 from robovoice.assistant.hindi import from_hindi
+from robovoice.assistant.pidgin import from_pidgin
 from robovoice.assistant.swahili import from_swahili
 from robovoice.assistant.tagalog import from_tagalog
 
@@ -60,12 +61,12 @@ _SPANISH = rules((
 
 
 def _other_languages(text: str) -> str:
-    """`text` with its Tagalog, Hindi, Urdu, Punjabi and Swahili put in English."""
-    return from_swahili(from_hindi(from_tagalog(text)))
+    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili and Pidgin put in English."""
+    return from_pidgin(from_swahili(from_hindi(from_tagalog(text))))
 
 
 def translated(text: str) -> bool:
-    """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili or Spanish words
+    """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin or Spanish words
     that `in_english` puts in English (a dialect of English is not another language)."""
     return _other_languages(text) != text or bool(_ANY_SPANISH.search(text))
 
