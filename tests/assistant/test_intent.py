@@ -1353,3 +1353,19 @@ def test_an_arrival_said_in_the_present_after_the_request_is_done_first(text: st
 ])
 def test_before_you_holds_the_call_back_and_courtesy_is_read(text: str, steps: tuple[str, ...]) -> None:
     assert tuple(read_request(text).worded_steps) == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # a bare "no, wait" and then "before that": a step put first, the one taken back kept (text v91)
+    ("Turn the projector off. No, wait, before that, go to the living room.",
+     ("go to the living room", "Turn the projector off")),
+    ("Ring Anna, oh wait, no, go to the bedroom first.", ("go to the bedroom first", "Ring Anna")),
+    # "no, forget it" takes it back for good, whatever comes after
+    ("Call Clara. No, forget it. Before that I'd better have my lunch.", ()),
+    ("Ring Anna, no, forget it, go to the bedroom first.", ("go to the bedroom first",)),
+    # "from there": the next step (text v90)
+    ("Head to the bedroom, and from there go on to the bathroom.", ("Head to the bedroom", "go on to the bathroom")),
+    ("From there you can see the garden.", ()),
+])
+def test_no_wait_before_that_keeps_the_step_and_from_there_is_the_next(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

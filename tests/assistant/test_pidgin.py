@@ -23,6 +23,10 @@ from robovoice.assistant.reading import ClauseKind
     ("Chale, you sabi how to ring Dr. Weber?", "do you know how to ring Dr. Weber?"),
     ("Ben say make we go kitchen tomorrow.", "Ben say let's go to the kitchen tomorrow."),
     ("Biko, off am.", "please, switch off it."),
+    ("I beg, on the projector for me.", "please switch on the projector for me."),
+    ("I beg your pardon, go to the kitchen.", "I beg your pardon, go to the kitchen."),
+    ("End this call, then carry yourself go charge.", "End this call, then go charge."),
+    ("Make you go kitchen, from there pass the hallway.", "go to the kitchen, from there go to the hallway."),
     # no Pidgin word: nothing changed ("off", "make you", "no go" are English too)
     ("Off we go to the kitchen, no go-slow.", "Off we go to the kitchen, no go-slow."),
     ("I will make you a cup of tea.", "I will make you a cup of tea."),

@@ -80,6 +80,7 @@ from robovoice.assistant.order_words import (
     THAT_FIRST,
     URGE,
     before_you,
+    only_paused,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
 from robovoice.assistant.said_order import arrival_first
@@ -152,6 +153,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         if THAT_FIRST.match(bare):
             clauses.append(Clause(part, ClauseKind.STATEMENT))  # "where are you? Tell me that first, …"
             continue
+        if undone and ((kind is ClauseKind.REQUEST and FIRST.search(part.strip()) and not fragment(part))
+                       or BEFORE_THAT.match(bare)) and only_paused(c.text for c in clauses[max(undone) + 1:]):
+            # "ring Anna — oh wait, no, go to the bedroom first", "…, no, wait, before that, …": before, not instead
+            clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and not PAUSE.match(c.text) else c
+                       for i, c in enumerate(clauses)]
+            undone, corrected = [], False
         if BEFORE_THAT.match(bare):
             front = _first_asked(clauses)
             clauses.append(Clause(part, ClauseKind.STATEMENT))
@@ -161,11 +168,6 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses.append(Clause(first_said, ClauseKind.REQUEST))
             front = held = len(clauses) - 1
             continue
-        if kind is ClauseKind.REQUEST and undone and FIRST.search(part.strip()) and not fragment(part):
-            # "ring Anna — oh wait, no, go to the bedroom first": not instead of the call, before it
-            clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and not PAUSE.match(c.text) else c
-                       for i, c in enumerate(clauses)]
-            undone, corrected = [], False
         if kind is ClauseKind.REQUEST and FIRST.search(part.strip()):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
         if (sequence := SEQUENCE.match(bare)) and (done := base_form(sequence.group(1))) and \

@@ -5,6 +5,7 @@ a time that is not now said after a request ("…, but not at the moment")."""
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 
 from robovoice.assistant.lexicon import IMPERATIVES
 
@@ -15,9 +16,9 @@ BACK_ONLY = re.compile(r"^\s*(?:with )?(?:him|her|them|it|that|this|through)?\W*
 ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:the |my |your )?"
                               r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
-# not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41)
+# not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41),
 AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
-                   r"|followed by)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
+                   r"|followed by|from there)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)  # "from there" (text v90)
 # "Tell me that first": the question said before it is the step, and it is first already.
 THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
@@ -25,6 +26,10 @@ BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|yo
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now| so)?$", re.IGNORECASE)  # "go on so" (v59)
 PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
+# "ring Anna, oh wait, no, …": only a bare "no" or "wait" said since, which a step put first leaves
+# standing; "no, forget it" took the call back for good
+_BARE_NO = re.compile(r"^(?:(?:oh|ah|um|er|erm|no|wait|sorry|actually|hmm|well) )*(?:no|wait|hang on|hold on|sorry)$",
+                      re.IGNORECASE)
 AFTER_YOU = re.compile(r"^(?:after|once|as soon as) you (?!(?:'|are|get|go there|arrive)\b)(\w+ \w.*)$", re.IGNORECASE)
 FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 
@@ -49,3 +54,9 @@ def before_you(bare: str) -> str | None:
     stem = doing.group(1).lower()
     verb = next((v for v in (stem, stem + "e", stem[:-1]) if v in IMPERATIVES), None)  # ring, charge, put
     return None if verb is None else verb + doing.group(2)
+
+
+def only_paused(texts: Iterable[str]) -> bool:
+    """Whether each of `texts` is only a "no" or a "wait" ("oh wait, no"): a request taken back
+    that way is kept when the next says what to do before it."""
+    return all(_BARE_NO.match(re.sub(r"[^\w']+", " ", text).strip()) for text in texts)

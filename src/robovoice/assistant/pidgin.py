@@ -20,11 +20,13 @@ _MARKER = re.compile(r"\b(?:abeg|oya|ngwa|ehen|ehn|wetin|abi|sebi|shey|dey|una|w
                      r"|chale|chaley|biko|jare|sef|kashe|kunna|make (?:you|we)|no be|sharp sharp|e don"
                      r"|don (?=come|reach|finish|do|go|tire)"
                      r"|(?:off|on|do|call|ring|stop|end|leave|forget|kashe|kunna|cut) am"
+                     r"|carry (?:yourself|your body) (?:go|enter)|i beg,? (?=go|come|on|off|call|ring|end|stop)"
                      r"|mepaakyew|mepa wo kyew|medaase|ejo|ejoor|nne|nna|haba)\b", re.IGNORECASE)
 
 _ROOMS = (r"(?:the\s+)?(?:kitchen|bedroom|bathroom|hallway|living room|parlour|parlor|sitting room|front door"
           r"|charging dock|charger|dock|toilet|corridor)\b")
-_START = r"(^|[.!?,;\u2026]\s*|\b(?:please|abeg|and|then|now|first|so)\s+)"  # where a clause, and so a request, starts
+# where a clause, and so a request, starts
+_START = r"(^|[.!?,;\u2026]\s*|\b(?:please|abeg|and|then|now|first|so|from there)\s+)"
 _VERBS = (r"(?:go|come|call|ring|off|on|switch|turn|stop|end|cut|comot|carry|check|enter|wait|hold|move|drive|bring"
           r"|show|play|put|return|charge|take|help|tell|find|look|do|kashe|kunna)\b")
 
@@ -33,6 +35,7 @@ _RULES = rules((
     # (Ghana: friend); "biko", "ejo" (Igbo, Yoruba) and "mepaakyew" (Twi) are please
     (r"\b(?:biko|ejo(?:or)?|mepaakyew|mepa wo kyew)\b", "please"), (r"\bmedaase\b", "thank you"),
     (r"\b(?:oya|ngwa|ehen|ehn|chale|chaley|haba)\b[\s,!.]*", ""),
+    (_START + r"i beg,?\s+(?=" + _VERBS + ")", r"\1please "),  # "I beg, on the projector": please
     (r"\s*,?\s*\b(?:(?-i:o+)|jare|sef|abi|(?-i:nne)|(?-i:nna))\b(?=\s*(?:[,.!?\u2026]|$))", ""),
     (r"\b(?:sharp sharp|quick quick|fast fast)\b", "quickly"), (r"\bnow now\b", "right now"),
     # "make you no …": don't; "make you …": a request; "make we …": let's
@@ -49,7 +52,7 @@ _RULES = rules((
     (_START + r"(off|on)\s+(?=(?:(?:the|that|this|dat|dis|my|your)\s+)?(?:projector|light|screen|tv|telly|it)\b)",
      r"\1switch \2 "),
     (r"\b(?:carry|take)\s+(?:yourself|your body)\b", "go"), (r"\bwaka\b", "go"), (r"\bcomot\b", "leave"),
-    (r"\bgo\s+(?:go|enter|waka)\b", "go"), (_START + r"(?:enter|reach)\s+(?=" + _ROOMS + ")", r"\1go to "),
+    (r"\bgo\s+(?:go|enter|waka)\b", "go"), (_START + r"(?:enter|reach|pass)\s+(?=" + _ROOMS + ")", r"\1go to "),
     (r"\b(go|come|run|hurry|go back|come back)\s+(?=(?!the\b)" + _ROOMS + ")", r"\1 to the "),
     (r"\bto the the\b", "to the"), (r"\b(?:parlour|parlor)\b", "living room"),
     (r"\bwan\b", "want"), (r"\bwetin\b", "what"),
