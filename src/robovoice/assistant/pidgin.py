@@ -54,7 +54,7 @@ _RULES = rules((
     (r"\b(?:carry|take)\s+(?:yourself|your body)\b", "go"), (r"\bwaka\b", "go"), (r"\bcomot\b", "leave"),
     (r"\bgo\s+(?:go|enter|waka)\b", "go"), (_START + r"(?:enter|reach|pass)\s+(?=" + _ROOMS + ")", r"\1go to "),
     (r"\b(go|come|run|hurry|go back|come back)\s+(?=(?!the\b)" + _ROOMS + ")", r"\1 to the "),
-    (r"\bto the the\b", "to the"), (r"\b(?:parlour|parlor)\b", "living room"),
+    (r"\b(?:parlour|parlor)\b", "living room"),
     (r"\bwan\b", "want"), (r"\bwetin\b", "what"),
 ))
 
