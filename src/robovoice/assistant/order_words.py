@@ -17,8 +17,9 @@ ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of 
                               r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
 FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
 # not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41),
+# "from there" (v90)
 AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
-                   r"|followed by|from there)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)  # "from there" (text v90)
+                   r"|followed by|from there)\b(?!\s+you\b)[\s,]*", re.IGNORECASE)
 # "Tell me that first": the question said before it is the step, and it is first already.
 THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
