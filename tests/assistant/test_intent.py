@@ -1369,3 +1369,26 @@ def test_before_you_holds_the_call_back_and_courtesy_is_read(text: str, steps: t
 ])
 def test_no_wait_before_that_keeps_the_step_and_from_there_is_the_next(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # "…, but only once you're in X" after a request: being there first; its "not before" says it again (text v93)
+    ("Ring Anna, but only once you're in the bedroom.", ("go to the bedroom", "Ring Anna")),
+    ("Switch the projector on, only when you get to the living room, not before.",
+     ("go to the living room", "Switch the projector on")),
+    # … but a request after it is what it leads to
+    ("Go to the bedroom, and once you're in the bedroom, ring Ben.", ("Go to the bedroom", "ring Ben")),
+    # "after you reach <someone> in X" (text v89)
+    ("Give Ben a ring after you reach Mum in the kitchen.", ("go to the kitchen", "Give Ben a ring")),
+    # a drive that names a person: not the call again (text v92)
+    ("Hang up on Ben, dear, and go let him in at the front door.",
+     ("Hang up on Ben", "go let him in at the front door")),
+    # "leave us to it": why it goes; it takes nothing back (text v92)
+    ("Call Clara and then pop off to the bedroom and leave us to it.", ("Call Clara", "pop off to the bedroom")),
+    ("Ring Clara, no, leave Clara, go to the kitchen.", ("go to the kitchen",)),
+    # "before you ring him": the call said already; "before all of that": first of all (text v90)
+    ("Ring Dr. Weber, but before you ring him, switch the projector off, and before all of that, go to the bedroom.",
+     ("go to the bedroom", "switch the projector off", "Ring Dr. Weber")),
+])
+def test_there_first_when_said_after_a_call_said_again_and_before_all_that(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -10,6 +10,8 @@ cannot make one clause at a time.
 - **A list of places sent off with a bare "go"**: "Kitchen, then bedroom, then the dock. Off
   you go." The places alone read as talk (a bare "the kitchen" is no request); the "go" with
   no place of its own says they are its steps.
+- **"actually, just …" after a request** (`actually_only`): only what follows is wanted, as
+  after "no, just …".
 
 Written on the dev set (tests/data/eval/text.jsonl: amend-*, golist-*).
 """
@@ -18,6 +20,7 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.clause_kind import classify
 from robovoice.assistant.lexicon import (
     ARTICLES,
     FILLER,
@@ -211,3 +214,22 @@ def _a_name(said: str, text: str) -> bool:
     at = text.find(said)
     before = re.sub(r"(?:\b(?:and|then)\b|[\s,;\u2013\u2014-])*$", "", text[:max(at, 0)])
     return said[:1].isupper() and bool(before) and before[-1] not in ".!?:"
+
+
+_ACTUALLY = re.compile(r"^\s*actually\b[\s,]*", re.IGNORECASE)
+_ONLY_THIS = re.compile(r"^(?:just|only)\s+(?!(?:a|one) (?:sec|second|minute|moment|mo)\b)", re.IGNORECASE)
+
+
+def actually_only(parts: list[str]) -> list[str]:
+    """"…, actually, just end the call" after a request: only what follows is wanted, as after
+    "no, just …" (text test v36: "Tell Anna I'm flagging... actually, just end the call")."""
+    out: list[str] = []
+    for i, part in enumerate(parts):
+        said = _ACTUALLY.match(part)
+        rest = part[said.end():] if said else ""
+        after = rest or (parts[i + 1].strip() if i + 1 < len(parts) else "")
+        if said and _ONLY_THIS.match(after) and any(classify(p) is ClauseKind.REQUEST for p in out):
+            out += ["no", rest] if rest else ["no"]
+        else:
+            out.append(part)
+    return out

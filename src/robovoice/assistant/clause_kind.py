@@ -177,6 +177,8 @@ _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"
 # an unsure opening before a command (not `lexicon._HEDGE`, a hedge said alone after a request)
 _UNSURE = re.compile(r"^(?:i guess|i suppose|i think|maybe|perhaps),?\s+")
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
+# why it goes, not a step: "…, pop off to the kitchen and leave us to it" (text test v92)
+_LEFT_TO_IT = re.compile(r"^leave (?:us|me|them|him|her)(?: (?:two|both|all))? to (?:it|(?:our|their) \w+)\b")
 # "I was gonna tell you to stop, but …": a stop nearly said is no stop (text test v57)
 _WAS_GOING_TO = re.compile(r"\b(?:was|were) (?:going to|about to|meaning to|gonna) (?:tell|ask|say)\b"
                            r"|\b(?:nearly|almost) (?:told|asked|said)\b", re.IGNORECASE)
@@ -189,7 +191,8 @@ def classify(clause: str) -> ClauseKind:
     lowered = text.lower()
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
-    if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)):
+    if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)) \
+            or _LEFT_TO_IT.match(lowered):
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)"
                                                # "I don't want you to stop" (text test v59)

@@ -113,10 +113,12 @@ SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| hav
                       rf"(?!(?:got )?{_A_MOMENT})(\w+)", re.IGNORECASE)
 # Being somewhere as the first step: "once you're in the bedroom, …" (not "when you're in the
 # kitchen, …": that may be whenever it is), and "… once you've got to the bedroom", said last.
-ONCE_THERE = re.compile(r"^(?:once|as soon as) you(?:(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (text test v55)
+# "…, but only once you're in the kitchen" (text test v93); "… after you reach Abbu in the bedroom" (text test v89)
+ONCE_THERE = re.compile(r"^(?:only )?(?:once|as soon as) you(?:(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (v55)
                         r"(?:in|at|by|inside|into)| (?:reach|get to|arrive at|make it to)) "  # (text test v68)
                         r"((?:the|my|your) \w+(?: \w+)?)$"
-                        r"|^(?:after|when) you (?:reach|get to|arrive at|make it to) ((?:the|my|your) \w+(?: \w+)?)$",
+                        r"|^(?:only )?(?:after|when) you (?:reach|get to|arrive at|make it to)(?: \w+ (?:in|at))?"
+                        r" ((?:the|my|your) \w+(?: \w+)?)$",
                         re.IGNORECASE)  # (text test v71: "… after you get to the bedroom")
 ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|inside) (?:the|my|your) \w+(?: \w+)?"
                      r"|(?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"
@@ -125,7 +127,8 @@ ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|
                      r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?"
                      # … and said in the present: "call Doctor Weber after you get to the bedroom" (text test v71)
                      r"|(?:once|when|after|as soon as) you (?:get|arrive|reach|make it)"
-                     r"(?: back| over| down| up| through)*(?: (?:to|into|in|at))? (?:the|my|your) \w+(?: \w+)?)\s*$",
+                     r"(?: back| over| down| up| through)*(?: (?:to|into|in|at)| \w+ (?:in|at))?"
+                     r" (?:the|my|your) \w+(?: \w+)?)\s*$",
                      re.IGNORECASE)
 
 # "call Clara after you put the projector on", "go to the kitchen after you've rung Ben" (text

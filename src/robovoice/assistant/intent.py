@@ -27,7 +27,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.addressee import set_aside
-from robovoice.assistant.amend import amend, named_back, repeats
+from robovoice.assistant.amend import actually_only, amend, named_back, repeats
 from robovoice.assistant.clause_kind import SEE_IF, classify
 from robovoice.assistant.clauses import split_clauses
 from robovoice.assistant.hypothetical import (
@@ -81,6 +81,7 @@ from robovoice.assistant.order_words import (
     URGE,
     before_you,
     only_paused,
+    same_step,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
 from robovoice.assistant.said_order import arrival_first
@@ -101,7 +102,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     amending = False  # right after a bare "sorry" or "I mean" (amend)
     noted = False  # after "Note for Dad:": what follows is for somebody else
     text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
-    for part in _actually_only(arrival_first(split_clauses(text))):
+    for part in actually_only(arrival_first(split_clauses(text))):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if (at := _last_said(clauses)) is not None and tag_asks(clauses[at], part):  # "Bedroom, please."
                 clauses[at] = Clause(clauses[at].text, ClauseKind.REQUEST)  # "would you ever …, please?"
@@ -164,9 +165,13 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
         if (first_said := before_you(bare)) and classify(first_said) is ClauseKind.REQUEST:
-            # "before you ring Clara, put the projector on": the call comes after what follows
-            clauses.append(Clause(first_said, ClauseKind.REQUEST))
-            front = held = len(clauses) - 1
+            # "before you ring Clara, put the projector on": the call comes after what follows;
+            # "Call Ben, but before you call him, …": the call said already (text test v90)
+            again = next((i for i, c in enumerate(clauses) if c.kind is ClauseKind.REQUEST
+                          and same_step(first_said, c.text)), None)
+            if again is None:
+                clauses.append(Clause(first_said, ClauseKind.REQUEST))
+            front = held = len(clauses) - 1 if again is None else again
             continue
         if kind is ClauseKind.REQUEST and FIRST.search(part.strip()):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
@@ -343,28 +348,9 @@ _NAMED = re.compile(r"^(?:the|my|your)\s", re.IGNORECASE)
 # (not in what it is for: "put the projector on so I can see her" is a thing of its own, and so
 # is a drive to a place: "go to the front door to receive her", text test v49)
 _BACK_TO_SOMEONE = re.compile(r"(?!(?:please |kindly |just |now )*(?:go|come|head|drive|pop|nip|move|get|run|hurry)\b"
-                              r"[^,]*\b(?:to|into) (?:the|my|our)\b)"
+                              r"[^,]*\b(?:to|into|at|by) (?:the|my|our)\b)"
                               r"(?:(?!\b(?:so|because|as|for|to see)\b).)*?\b(?:him|her|them)\b", re.IGNORECASE)
 _NAME = re.compile(r"(?<=\w )(?!I\b)[A-Z][a-z]+")  # a capitalised word that does not start the clause
-_ACTUALLY = re.compile(r"^\s*actually\b[\s,]*", re.IGNORECASE)
-_ONLY_THIS = re.compile(r"^(?:just|only)\s+(?!(?:a|one) (?:sec|second|minute|moment|mo)\b)", re.IGNORECASE)
-
-
-def _actually_only(parts: list[str]) -> list[str]:
-    """"…, actually, just end the call" after a request: only what follows is wanted, as after
-    "no, just …" (text test v36: "Tell Anna I'm flagging... actually, just end the call")."""
-    out: list[str] = []
-    for i, part in enumerate(parts):
-        said = _ACTUALLY.match(part)
-        rest = part[said.end():] if said else ""
-        after = rest or (parts[i + 1].strip() if i + 1 < len(parts) else "")
-        if said and _ONLY_THIS.match(after) and any(classify(p) is ClauseKind.REQUEST for p in out):
-            out += ["no", rest] if rest else ["no"]
-        else:
-            out.append(part)
-    return out
-
-
 # A request said with a gerund ("would you mind turning …", "how about ringing …"): a gerund after it goes on asking.
 _MIND_DOING = re.compile(r"\b(?:mind|about|fancy)\s+(?:\w+ )?\w+ing\b", re.IGNORECASE)
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from robovoice.assistant.lexicon import IMPERATIVES
+from robovoice.assistant.lexicon import IMPERATIVES, words
 
 # "…, and once you've got her, …": the step before done, then what follows
 HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
@@ -23,7 +23,9 @@ AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wa
 # "Tell me that first": the question said before it is the step, and it is first already.
 THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
-BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else)$", re.IGNORECASE)
+# "… and before all that, come to the living room" (text test v90)
+BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else|(?:all|any) (?:of )?"
+                         r"(?:that|this)|everything(?: else)?)$", re.IGNORECASE)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now| so)?$", re.IGNORECASE)  # "go on so" (v59)
 PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
@@ -55,6 +57,16 @@ def before_you(bare: str) -> str | None:
     stem = doing.group(1).lower()
     verb = next((v for v in (stem, stem + "e", stem[:-1]) if v in IMPERATIVES), None)  # ring, charge, put
     return None if verb is None else verb + doing.group(2)
+
+
+def same_step(said: str, request: str) -> bool:
+    """Whether `said` names again the step `request` asks for: "call him" after "Call Ben", "go
+    there" after "go to the kitchen" (its verb, and nothing the request does not say but who or where)."""
+    first, *rest = words(said) or [""]
+    return words(request)[:1] == [first] and set(rest) - _BACK_WORDS <= set(words(request))
+
+
+_BACK_WORDS = frozenset({"him", "her", "them", "it", "there", "that", "the", "a", "an"})
 
 
 def only_paused(texts: Iterable[str]) -> bool:

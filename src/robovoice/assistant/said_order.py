@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.clause_kind import classify
-from robovoice.assistant.hypothetical import AFTER_YOU_DID, ARRIVED, BEFORE_YOU_DO
+from robovoice.assistant.hypothetical import AFTER_YOU_DID, ARRIVED, BEFORE_YOU_DO, ONCE_THERE
 from robovoice.assistant.reading import ClauseKind
 
 # "…, but come into the living room before you do": before the request said just before (text test v51)
@@ -26,7 +26,16 @@ def arrival_first(parts: list[str]) -> list[str]:
     the projector off before you head to the bedroom") as that request, then the next; one that
     begins on where it will be, with no comma, as that and the request."""
     out: list[str] = []
-    for part in parts:
+    moved = False  # the part before was a "once you're in the kitchen" put first
+    for i, part in enumerate(parts):
+        if moved and _NOT_BEFORE.match(part.strip()):
+            continue  # "…, but only once you're in the kitchen, not before": said again, not a time held
+        after = [p for p in parts[i + 1:] if not _NOT_BEFORE.match(p.strip())][:1]
+        moved = bool(ONCE_THERE.match(part.strip()) and out and classify(out[-1]) is ClauseKind.REQUEST and (
+            part.strip().lower().startswith("only") or not any(classify(p) is ClauseKind.REQUEST for p in after)))
+        if moved:  # "Call Clara, but only once you're in the kitchen": being there first (text test v93)
+            out.insert(len(out) - 1, part)
+            continue
         if (first := _BEFORE_YOU_DO_IT.search(part)) and out and \
                 classify(part[:first.start()]) is ClauseKind.REQUEST and classify(out[-1]) is ClauseKind.REQUEST:
             out.insert(len(out) - 1, part[:first.start()])  # "ring him, but come here before you do"
@@ -56,4 +65,5 @@ def _once_in(there: re.Match[str]) -> list[str] | None:
     return None
 
 
+_NOT_BEFORE = re.compile(r"^(?:and |but )?not (?:before|until then|till then)\W*$", re.IGNORECASE)
 _PLACE_NOUNS = frozenset({"room", "door", "dock", "station", "hall", "way", "area", "corner"})
