@@ -1392,3 +1392,15 @@ def test_no_wait_before_that_keeps_the_step_and_from_there_is_the_next(text: str
 ])
 def test_there_first_when_said_after_a_call_said_again_and_before_all_that(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # "um" heard as "I'm" before a bare verb (audio v83); "I'm going to …", "I'm off to …" are the speaker's own
+    ("I'm Chuck the projector on for us, love.", ("I'm Chuck the projector on for us",)),
+    ("I'm going to ring Ben later.", ()),
+    ("I'm off to the kitchen.", ()),
+    # "be a <anything> and …": courtesy around the request, with a "go and" after it (audio v84)
+    ("Be a champ and go and call Ben.", ("go call Ben",)),
+])
+def test_a_misheard_um_and_be_a_anything_and(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -68,7 +68,8 @@ _GO_AND = re.compile(r"\b(go|come|try|pop|run|hurry)\s+and\s+(?!then\b|after\b|a
 
 # "would you be a dear and pop into the kitchen", "please be so kind as to come to the living room"
 # (text test v82): courtesy around one request
-_BE_A_DEAR = re.compile(r"\bbe (?:a (?:dear|love|darling|pet|sweetheart|star|treasure|gem)|an angel|good) and\s+|"
+# (any one or two words: "be a doll and call …", heard "be a go and call …": audio test v84)
+_BE_A_DEAR = re.compile(r"\bbe (?:(?:a|an) (?:\w+ )?\w+|good) and\s+|"
                         r"\bbe (?:so kind as|kind enough|good enough|so good as) to\s+",
                         re.IGNORECASE)
 
@@ -108,7 +109,7 @@ def split_clauses(text: str) -> list[str]:
     text = _ON_AND_OFF.sub(r"\1-and-\2", _UP_AND.sub("up", text))
     text = _ORDER_THEN_ASK.sub(r"\1, ", _CALL_COMMA.sub(r"\1 ", _YOU.sub("you", text.strip())))
     text = _AND_WAIT.sub(r"\1 ", _NICE_AND.sub(r"\1-and-", _TURN_AND.sub("", _AWAY_AND.sub("go and ", text))))
-    text = _APPOSITIVE.sub(r"\1 ", _BE_A_DEAR.sub("", _GO_AND.sub(r"\1 ", text)))
+    text = _APPOSITIVE.sub(r"\1 ", _GO_AND.sub(r"\1 ", _BE_A_DEAR.sub("", text)))
     said = (_done_then(_LEADING.sub("", p.strip(" ,.;:!?-\"'")), i) for i, p in enumerate(_SPLIT.split(text)))
     parts = [p for p in (_RELAYED.sub("", _RELAYED_NOT.sub("don't ", p)) for p in said) if p]
     return [_TRAILING.sub("", p) for p in parts[:-1]] + parts[-1:]

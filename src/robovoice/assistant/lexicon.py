@@ -27,6 +27,8 @@ FILLER = re.compile(
     r"aiyah|aiya|aiyoh|aiyo|alamak|walao|wah|"  # Singlish ones (text test v70)
     r"aye|och|ach|"  # Scots ones (text test v74)
     r"(?:i'?ll )?tell you what|"
+    # "um, chuck the projector on" heard "I'm Chuck the projector on" (audio test v83): no "I'm" takes a bare verb
+    r"i'?m(?=[\s,]+(?:go|call|ring|phone|dial|turn|switch|chuck|head|drive|end|hang|stop|pop|nip|bring|take)\b)|"
     r"wait(?=[\s,]+(?:what|which|where|who|how|why|when|do|does|did|is|are|can)\b))\b[\s,]*)+",
     re.IGNORECASE,
 )
