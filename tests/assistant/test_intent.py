@@ -1404,3 +1404,22 @@ def test_there_first_when_said_after_a_call_said_again_and_before_all_that(text:
 ])
 def test_a_misheard_um_and_be_a_anything_and(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # "once you've talked to her": the call said before, then the next step (text v94)
+    ("Ring Anna, and once you've talked to her, go back to your charger.", ("Ring Anna", "go back to your charger")),
+    # how to walk, said to a person, is no step (text v94: it drove to the bathroom named before it)
+    ("Careful, the hallway is slippery, Grandpa, walk slowly now.", ()),
+    ("Go slowly to the kitchen.", ("Go slowly to the kitchen",)),
+    # "before you rings Ben" (text v95)
+    ("Before you rings Ben, come into the living room.", ("come into the living room", "ring Ben")),
+    # "but first X" after a request, and "… before all of that" ending a clause: first (text v95)
+    ("Ring Clara, but first the hallway, and turn the projector off before all of that.",
+     ("turn the projector off before all of that", "first the hallway", "Ring Clara")),
+    ("First the kitchen, then the bedroom.", ("First the kitchen", "the bedroom")),
+    # "First thing,": an order word, no step (text v95)
+    ("First thing, go to the bathroom, then call Dr. Weber.", ("go to the bathroom", "call Dr. Weber")),
+])
+def test_talked_to_her_manner_only_rings_but_first_and_first_thing(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -179,6 +179,9 @@ _UNSURE = re.compile(r"^(?:i guess|i suppose|i think|maybe|perhaps),?\s+")
 _PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
 # why it goes, not a step: "…, pop off to the kitchen and leave us to it" (text test v92)
 _LEFT_TO_IT = re.compile(r"^leave (?:us|me|them|him|her)(?: (?:two|both|all))? to (?:it|(?:our|their) \w+)\b")
+# how to walk, said to a person: no place, no step ("…, Mkhulu, walk slowly hey", text test v94: it drove there)
+_MANNER_ONLY = re.compile(r"^(?:walk|step|tread|move|go)(?: (?:very|really|nice and|more|extra))? (?:slowly|slow|"
+                          r"carefully|careful|gently|easy)(?:,? (?:now|please|hey|eh|ok|okay|mind|love|dear))*\W*$")
 # "I was gonna tell you to stop, but …": a stop nearly said is no stop (text test v57)
 _WAS_GOING_TO = re.compile(r"\b(?:was|were) (?:going to|about to|meaning to|gonna) (?:tell|ask|say)\b"
                            r"|\b(?:nearly|almost) (?:told|asked|said)\b", re.IGNORECASE)
@@ -192,7 +195,7 @@ def classify(clause: str) -> ClauseKind:
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
     if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)) \
-            or _LEFT_TO_IT.match(lowered):
+            or _LEFT_TO_IT.match(lowered) or _MANNER_ONLY.match(lowered):
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)"
                                                # "I don't want you to stop" (text test v59)

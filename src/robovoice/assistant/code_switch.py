@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.afrikaans import from_afrikaans
 from robovoice.assistant.dialects import as_standard, rewrite, rules
+from robovoice.assistant.french import from_french
 from robovoice.assistant.hindi import from_hindi
 from robovoice.assistant.pidgin import from_pidgin
 from robovoice.assistant.swahili import from_swahili
@@ -61,13 +63,14 @@ _SPANISH = rules((
 
 
 def _other_languages(text: str) -> str:
-    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili and Pidgin put in English."""
-    return from_pidgin(from_swahili(from_hindi(from_tagalog(text))))
+    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans and French put in
+    English."""
+    return from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
 
 
 def translated(text: str) -> bool:
-    """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin or Spanish words
-    that `in_english` puts in English (a dialect of English is not another language)."""
+    """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French or
+    Spanish words that `in_english` puts in English (a dialect of English is not another language)."""
     return _other_languages(text) != text or bool(_ANY_SPANISH.search(text))
 
 

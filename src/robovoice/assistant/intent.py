@@ -70,6 +70,7 @@ from robovoice.assistant.order_words import (
     AFTER,
     AFTER_YOU,
     BACK_ONLY,
+    BEFORE_ALL,
     BEFORE_THAT,
     FIRST,
     FIRST_ALONE,
@@ -173,7 +174,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 clauses.append(Clause(first_said, ClauseKind.REQUEST))
             front = held = len(clauses) - 1 if again is None else again
             continue
-        if kind is ClauseKind.REQUEST and FIRST.search(part.strip()):
+        if kind is ClauseKind.REQUEST and (FIRST.search(part.strip()) or BEFORE_ALL.search(part)):
             front = _first_asked(clauses)  # "call the doctor, and put the projector on first"
         if (sequence := SEQUENCE.match(bare)) and (done := base_form(sequence.group(1))) and \
                 any(c.kind is ClauseKind.REQUEST and done in words(c.text) for c in clauses) and \
@@ -238,7 +239,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 or (corrected and fragment(_I_MEAN.sub("", part)))):  # "no, the bathroom I mean"
             kind = ClauseKind.REQUEST  # "…, then the bedroom"; "go to the hall, no, the bathroom"
             thing = set(words(re.sub(r"\bfirst\W*$", "", bare))) - ARTICLES  # not a thing said before, again
-            if ordered and front is None and re.search(r"\bfirst\W*$", part) and _first_asked(clauses) is not None \
+            if ordered and front is None and re.search(r"^\W*first\b|\bfirst\W*$", part, re.IGNORECASE) \
+                    and _first_asked(clauses) is not None \
                     and not any(thing <= set(words(c.text)) for c in clauses):
                 front = _first_asked(clauses)  # "Turn the projector on. Wait. Living room first." (text test v64)
                 if previous is not None and at is not None and PAUSE.match(previous.text.strip()):
@@ -253,9 +255,12 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             kind, condition, conditioned = ClauseKind.ABILITY, False, None  # what it would do then, asked now
         if kind is ClauseKind.REQUEST and any(c.kind is kind and _said(c.text) == words(bare) for c in clauses):
             kind = ClauseKind.STATEMENT  # "…, the hallway. The hallway, sorry.": said again, not asked twice
-        if kind is ClauseKind.REQUEST and _JUST.match(part.strip()) and fragment(part) and any(
-                c.kind is kind and repeats(bare, c.text) for c in clauses):
-            kind = ClauseKind.STATEMENT  # "…, forget about the projector, just the bedroom": asked already
+        if kind is ClauseKind.REQUEST and fragment(part) and (any(
+                c.kind is kind and repeats(bare, c.text) for c in clauses) if _JUST.match(part.strip()) else (
+                previous is not None and previous.kind is kind and repeats(bare, previous.text))):
+            # "…, forget about the projector, just the bedroom": asked already; "va à la porte d'en
+            # avant, the front door": the same place said again, in English (text test v95)
+            kind = ClauseKind.STATEMENT
         if kind is ClauseKind.REQUEST and _BACK_TO_SOMEONE.match(part) and not _NAME.search(part) and any(
                 c.kind is kind and (RELATIONS & set(words(c.text)) or _NAME.search(c.text)) for c in clauses):
             kind = ClauseKind.STATEMENT  # "a word with my son Ben. Can you get him on the screen?": that call again

@@ -11,11 +11,17 @@ from robovoice.assistant.lexicon import IMPERATIVES, words
 
 # "…, and once you've got her, …": the step before done, then what follows
 HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
-BACK_ONLY = re.compile(r"^\s*(?:with )?(?:him|her|them|it|that|this|through)?\W*$", re.IGNORECASE)
+# (… or "after you've spoken to her, …": text test v94)
+BACK_ONLY = re.compile(r"^\s*(?:with |to )?(?:him|her|them|it|that|this|through)?\W*$", re.IGNORECASE)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
-ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of all$)(?:to |into )?(?:the |my |your )?"
+ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of all$|thing$|off$|up$)(?:to |into )?"
+                              r"(?:the |my |your )?"
                               r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
-FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first)?|to (?:start|begin) with)$", re.IGNORECASE)
+FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first| thing| off| up)?|to (?:start|begin) with)$",
+                         re.IGNORECASE)  # "First thing, put off that projector" (text test v95)
+# "…, and switch the projector on before all that" (text test v95): the step goes first, as "… first" does
+BEFORE_ALL = re.compile(r"\bbefore (?:all (?:of )?(?:that|this)|any of (?:that|this)|anything else"
+                        r"|everything(?: else)?)\W*$", re.IGNORECASE)
 # not "after lunch": no request; "thereafter" (v49), "after which", "followed by" (v50), "straight after" (audio v41),
 # "from there" (v90)
 AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wards| that| this| which)?|thereafter"
@@ -48,8 +54,10 @@ _BEFORE_DOING = re.compile(r"^before (\w+)ing\b(.*)$", re.IGNORECASE)
 def before_you(bare: str) -> str | None:
     """The request said after "before you" or "before <verb>ing" ("call Anna" for "before calling
     Anna"), or None."""
-    if you := _BEFORE_YOU.match(bare):
-        return you.group(1)
+    if you := _BEFORE_YOU.match(bare):  # "before you calls Clara" (Newfoundland, text test v95): "call"
+        verb, rest = you.group(1).split(" ", 1) if " " in you.group(1) else (you.group(1), "")
+        said = verb[:-1] if verb.lower().endswith("s") and verb[:-1].lower() in IMPERATIVES else verb
+        return f"{said} {rest}".strip()
     # (with the thing it is done to, and nobody else doing it: "before going to bed I read")
     if (doing := _BEFORE_DOING.match(bare)) is None or not doing.group(2).strip() \
             or re.search(r"\b(?:i|we|he|she|they|you)\b", doing.group(2), re.IGNORECASE):
