@@ -444,3 +444,20 @@ def test_lets_before_the_ends_words_ends_the_call_and_starts_none(text: str, con
     assert refusal(intent, SPECS["end_video_call"], {}, (), VOICE, tools=list(SPECS.values())) is None
     assert refusal(read_request(f"Let's call {contact}."), SPECS["start_video_call"], {"contact": contact}, (),
                    VOICE, tools=list(SPECS.values())) is None
+
+
+@pytest.mark.parametrize(("text", "contact", "runs"), [
+    # the call asked is the one the call's words name (text v95: the model rang Anna too)
+    ("Hang up with Anna, then call Doctor Weber.", "Anna", False),
+    ("Hang up with Anna, then call Doctor Weber.", "Dr. Weber", True),
+    ("End the call with Anna and ring Ben.", "Anna", False),
+    # both named in requests to call: both run
+    ("Call Anna, and ring Ben after.", "Anna", True),
+    ("Call Anna, and ring Ben after.", "Ben", True),
+    ("Hang up on Ben, then ring Clara for me.", "Clara", True),
+])
+def test_a_call_named_only_in_the_request_to_end_one_is_not_asked(text: str, contact: str, runs: bool) -> None:
+    body = refusal(read_request(text), SPECS["start_video_call"], {"contact": contact}, (), VOICE,
+                   tools=list(SPECS.values()))
+    assert (body is None) is runs
+    assert runs or body is not None and body["details"]["reason"] == OTHER

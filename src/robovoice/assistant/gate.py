@@ -31,6 +31,7 @@ from robovoice.assistant.fit import (
     listed,
     listed_names,
     named_in,
+    named_whole,
     subject_words,
     switches_the_one_thing_off,
     unlisted,
@@ -40,7 +41,7 @@ from robovoice.assistant.fit import (
 )
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.assistant.polarity import righted, wrong_way
-from robovoice.assistant.reading import ClauseKind, Intent
+from robovoice.assistant.reading import Clause, ClauseKind, Intent
 from robovoice.llm.base import ToolSpec
 from robovoice.manifest.voice import VoiceDecl
 
@@ -232,6 +233,26 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
                 glossed, elsewhere, kinds, pooled=pooled)
 
 
+def _another_asked(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], said: Collection[str],
+                   declared: Mapping[str, Sequence[str]]) -> bool:
+    """Of several requests, those this call's words fit name another of its listed values and
+    not its own: "Hang up with Anna, then call Doctor Weber" asks the call for Dr. Weber; Anna is
+    named only in the request to end the call (text test v95: the model rang Anna too). (Not for a
+    drive: "nip to the kitchen and then come back to the bathroom when I shout" asks both.)"""
+    requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
+    choices = listed(spec.parameters)
+    values = {arg: v for arg, v in arguments.items() if arg in choices and isinstance(v, str)}
+    if len(requests) < 2 or not values:
+        return False
+    fitting = [w for c in requests if _fits(Intent((Clause(c.text, c.kind),), intent.answering), spec.name, arguments,
+                                            said, declared, _glossed(spec, arguments), pooled=False)
+               for w in words(c.text)]
+    return bool(fitting) and any(
+        unsaid(spec.description, spec.parameters, {arg: value}, fitting) and any(  # ("your dock" names the dock)
+            named_whole(other, spec.description, fitting) for other in choices[arg] if other.lower() != value.lower())
+        for arg, value in values.items())
+
+
 def _only_talk(intent: Intent, why: str | None) -> bool:
     """A call refused as declined or as talk where every clause declines or is talk (no request,
     question or ability question): the robot's own line ("All right, I won't.", "I see.") answers
@@ -289,6 +310,9 @@ def refusal(
             why = UNCLEAR  # "ring gunner", misheard: which one it knows, not a question about "Gunner"
         elif spec is not None and wrong_way(intent, name, spec.parameters, arguments, declared.get(name, ())):
             why = WRONG_WAY  # "turn the projector off" with on: true (`polarity`)
+        elif spec is not None and not _moves(name, voice or {}) and _another_asked(intent, spec, arguments, said,
+                                                                                 declared):
+            why = OTHER  # "hang up with Anna, then call Doctor Weber": the call asked is Dr. Weber's
         else:
             return None
     answer = _only_talk(intent, why) or (why == ClauseKind.ABILITY.value and spec is not None
