@@ -460,4 +460,17 @@ def test_a_call_named_only_in_the_request_to_end_one_is_not_asked(text: str, con
     body = refusal(read_request(text), SPECS["start_video_call"], {"contact": contact}, (), VOICE,
                    tools=list(SPECS.values()))
     assert (body is None) is runs
-    assert runs or body is not None and body["details"]["reason"] == OTHER
+    assert runs or (body is not None and body["details"]["reason"] == OTHER)
+
+
+@pytest.mark.parametrize(("text", "runs"), [
+    # a request that opens with the call's verb asks no end, whoever it names (the end's noun "call" is no verb)
+    ("Call the plumber.", False),
+    ("Call my sister and tell her we're late.", False),
+    # the end's own words, or its noun before its verb as Hindi says it, still ask it
+    ("End the call.", True),
+    ("Call end karo, I'm tired.", True),
+])
+def test_a_call_to_someone_unknown_asks_no_end(text: str, runs: bool) -> None:
+    body = refusal(read_request(text), SPECS["end_video_call"], {}, (), VOICE, tools=list(SPECS.values()))
+    assert (body is None) is runs

@@ -1423,3 +1423,13 @@ def test_a_misheard_um_and_be_a_anything_and(text: str, steps: tuple[str, ...]) 
 ])
 def test_talked_to_her_manner_only_rings_but_first_and_first_thing(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # words in no Latin letters are read as talk, not a crash (text v98's Ukrainian "please" raised IndexError)
+    ("Будь ласка, go to the front door, somebody ring the bell.", ("go to the front door",)),
+    ("Будь ласка.", ()),
+    ("你好, call Anna.", ("call Anna",)),
+])
+def test_words_in_another_script_are_talk(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -217,6 +217,8 @@ def classify(clause: str) -> ClauseKind:
             or _BE_GOING.match(lowered):
         return ClauseKind.REQUEST  # "could you …"; "first you go to bathroom": a step said to the robot
     said = words(lowered)
+    if not said:  # no word in Latin letters ("Будь ласка,": Ukrainian please, text test v98): nothing asked
+        return ClauseKind.STATEMENT
     first = said[0]
     if first == "do" and ((len(said) > 1 and said[1] in IMPERATIVES)
                           or re.search(r"\b(?:please|kindly)\W*$", said_first, re.I)):

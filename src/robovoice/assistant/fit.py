@@ -147,11 +147,18 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     if any(isinstance(value, str) for value in arguments.values()):
         aimed = set()  # a place or a person says what it acts on
     acts = vocabulary(name, declared, {})  # its own words: a message for somebody fits only through them
+    # what a request may open with for it: its declared words and values, not a word of its name
+    # alone ("Call the plumber" opens with the call's verb, not end_video_call's noun)
+    openings = phrases[len(subject_words(name)):]
     for clause in _request_stems(intent, said, kinds, pooled):
         own_only = _message(clause) or _handles(clause)
         if not any(_says_for_it(clause, phrase, aimed) for phrase in (acts if own_only else phrases)):
             continue
-        if _longest_opening(clause, others) > _longest_opening(clause, phrases):
+        mine = _longest_opening(clause, openings)
+        if clause and [clause[0]] in phrases[:len(phrases) - len(openings)] and (
+                then := _longest_opening(clause[1:], openings)):
+            mine = max(mine, then + 1)  # "call end karo" (Hindi's word order): the call's noun, then its verb
+        if _longest_opening(clause, others) > mine:
             continue  # "ring off from Anna" opens with the end's "ring off", not the call's "ring"
         return True
     return False

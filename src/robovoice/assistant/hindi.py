@@ -53,8 +53,9 @@ _CONNECT = _asks(r"milao|mila" + _GIVE + r"|milana|milaiye|lagao|laga" + _GIVE +
 _ON = _asks(r"chalao|chala" + _GIVE + r"|chalana|chalaiye|lagao|laga" + _GIVE + r"|lagana|jalao|jala" + _GIVE +
             r"|kholo|khol" + _GIVE + r"|(?:chalu|chaalu|on|start|roshan)\s+" + _DO)
 _OFF = _asks(r"bujhao|bujha" + _GIVE + r"|(?:band|bandh|bund|off)\s+" + _DO + r"|hatao|hata" + _GIVE)
-_END = _asks(r"khatam\s+" + _DO + r"|kaato|kato|kaat" + _GIVE + r"|kaatna|katna|cut\s+" + _DO + r"|band\s+" + _DO +
-             r"|rakh" + _GIVE + r"|rakho")
+# ("call end karo": English's verb with Hindi's "do", audio test v75)
+_END = _asks(r"khatam\s+" + _DO + r"|kaato|kato|kaat" + _GIVE + r"|kaatna|katna|(?:cut|end)\s+" + _DO
+             + r"|band\s+" + _DO + r"|rakh" + _GIVE + r"|rakho")
 # (Urdu's courtesy: "tashreef le jaiye", take your honoured self there; "ki taraf mudiye": turn towards)
 _GO = _asks(r"(?:chale|chala|chali)\s+(?:jao|ja|jaa|jana|jaana)|tashreef\s+le\s+(?:jaiye|jaaiye|jayen|chaliye|chalein)|"
             r"jao|jaao|jaiye|jaaiye|jana|jaana|ja|jaa|chalo|chaliye|chal|mudiye|mudo|mud\s+jao|ho\s+aaiye|ho\s+aao")
