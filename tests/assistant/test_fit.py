@@ -474,3 +474,10 @@ def test_a_call_named_only_in_the_request_to_end_one_is_not_asked(text: str, con
 def test_a_call_to_someone_unknown_asks_no_end(text: str, runs: bool) -> None:
     body = refusal(read_request(text), SPECS["end_video_call"], {}, (), VOICE, tools=list(SPECS.values()))
     assert (body is None) is runs
+
+
+@pytest.mark.parametrize("text", ["Put the picture box on.", "Turn the picture gadget on, the one on the wall."])
+def test_a_word_searched_for_is_the_declared_thing(text: str) -> None:
+    # "picture thing" is declared: "picture box", "picture gadget" are the same thing, said while searching for the word
+    assert refusal(read_request(text), SPECS["set_projector_power"], {"on": True}, (), VOICE,
+                   tools=list(SPECS.values())) is None

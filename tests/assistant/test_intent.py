@@ -1433,3 +1433,21 @@ def test_talked_to_her_manner_only_rings_but_first_and_first_thing(text: str, st
 ])
 def test_words_in_another_script_are_talk(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # "no hang on" takes back, and "not yet" after a pause still holds the request back (audio v88: it drove)
+    ("Go to the kitchen, no hang on, not yet, after lunch.", ()),
+    ("Go to the kitchen, hang on, not yet.", ()),
+    ("Go to the kitchen, no hang on, the bedroom.", ("the bedroom",)),
+    # Caribbean English: "…, nah" a softener, "leh we", "de", "carry yuhself", "yuh could …?" (text v96)
+    ("Go in de bedroom an' check de window, nah.", ("Go in the bedroom", "check de window")),
+    ("Leh we ring Clara, but before dat, tun off de projector.", ("turn off the projector", "let's ring Clara")),
+    ("Yuh could ring people abroad, or is only family?", ()),
+    ("Go to the kitchen? Nah.", ()),
+    # an ability question's fragments go on asking it (text v97: "The doctor and that?" rang him)
+    ("Can you do the video calls? With the family? Ben and that?", ()),
+])
+def test_a_pause_before_not_yet_caribbean_turns_and_an_ability_questions_fragments(
+        text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -30,7 +30,7 @@ def rewrite(text: str, table: Rules) -> str:
 # Singlish (text test v70): its particles say nothing asked ("Off the projector lah"); "X can or
 # not?" is "can you X?"; "see got water on the floor or not" is "see if there is …"; "go toilet"
 # is "go to the toilet"
-_PARTICLE = re.compile(r"\s*,?\s*\b(?:lah|leh|lor|hor|meh|sia)\b"
+_PARTICLE = re.compile(r"\s*,?\s*\b(?:lah|leh(?! (?:we|me|us)\b)|lor|hor|meh|sia)\b"  # not Trinidad's "leh we"
                        r"|(?<=\w) (?:ah|ha|la|ar|wor|lo|mah)(?=\s*(?:[,.!?\u2026]|$))", re.IGNORECASE)
 _CAN_OR_NOT = re.compile(r"(^|[.!?\u2026,]\s*)(?:you )?([^.!?\u2026,]+?),?\s+can (?:or )?(?:not|anot)\b",
                          re.IGNORECASE)
@@ -58,9 +58,21 @@ _PATOIS = tuple((re.compile(pattern, re.IGNORECASE if flags else 0), english) fo
     (r"\bnuh\s+(?=(?:go|call|ring|turn|tun|switch|put|come|move|drive|do|bother|mind)\b)", "don't ", True),
     (r"\s*,?\s*\bnuh\b(?=\s*(?:[,.!?\u2026]|$))", "", True),  # "… nuh": asking, said at the end
     (r"\bfi mi\b", "for me", True), (r"\bdeh\b", "there", True), (r"\bdat\b", "that", True),
-    (r"\bdis\b", "this", True), (r"\btek\b", "take", True), (r"\byuhself(?: go)?\b", "yourself", True),
-    (r"\byuh\b", "your", True), (r"\bmek we\b", "let's", True), (r"\bwaan\b", "want", True),
-    (r"\bcyaan\b", "can't", True),
+    (r"\bdis\b", "this", True), (r"\btek\b", "take", True),
+    (r"\bcarry\s+(?:yuhself|yourself)\b", "go", True),  # Trinidad (text test v96): "carry yuhself in de bedroom"
+    (r"\byuhself(?: go)?\b", "yourself", True),
+    # "Yuh could call people?": asked without the turn round English gives it (could you …?)
+    (r"(^|[.!?,;]\s*)yuh (could|can|would|will)\b", r"\1\2 you", True),
+    (r"\byuh\b(?=\s+(?:call|go|come|ring|turn|tun|put|switch|could|can|reach|finish|done)\b)", "you", True),
+    (r"\byuh\b", "your", True), (r"\b(?:mek|leh) we\b", "let's", True), (r"\bleh me\b", "let me", True),
+    (r"\bmek\b", "make", True), (r"\bwaan\b", "want", True), (r"\bcyaan\b", "can't", True),
+    (r"\bfuh\b", "for", True), (r"\bme (?=(?:son|daughter|neighbour|neighbor|doctor|boy|girl)\b)", "my ", True),
+    # Trinidad and Barbados: "de" is the, before a thing of the house (not Spanish's "de"); "…, nah" at a
+    # request's end asks it more gently, no "no" (text test v96: "… an' see if ah lef' de stove on, nah.")
+    (r"\bde\b(?=\s+(?:kitchen|bedroom|bathroom|hallway|living|front|projector|doctor|dock|charger|light|screen"
+     r"|door|stove|tv|telly|room|call|phone|house)\b)", "the", False),
+    (r"(?<=[a-z'])(?<!\bor)\s*,?\s+nah(?=\s*(?:[.!?\u2026]|$))", "", True),  # (not "… or nah": or not)
+    (r"(?<=[,.;!?] )ah (?=(?:hear|see|want|need|could|did|think|know|lef'?|gone|go)\b)", "I ", True),  # "ah hear": I
 ))
 
 # Hong Kong English (text test v72): "open / close (the) projector" is switching it on or off; "add

@@ -93,7 +93,20 @@ def vocabulary(name: str, declared: Iterable[str], arguments: Mapping[str, Any])
     own = sorted(subject_words(name))
     values = [w for value in arguments.values() if isinstance(value, str) for w in words(value)]
     said_aloud = sorted(usual(values) - set(values))  # "Dr. Weber": "doctor"
-    return [[stem(w)] for w in own + values + said_aloud] + [_stems(phrase) for phrase in declared]
+    return [[stem(w)] for w in own + values + said_aloud] + [p for phrase in declared for p in _kinds_of(phrase)]
+
+
+# A word searched for ("the picture thing", "the picture box", "the picture machine"): any one of
+# these after a declared word is the same thing (text test v97: "Stick the picture box on" was refused)
+_GENERIC = ("thing", "thingy", "box", "machine", "gadget", "contraption", "doodah", "whatsit", "one")
+
+
+def _kinds_of(phrase: str) -> list[list[str]]:
+    """The phrase as stems, and, where it ends on a word like "thing", each of those words in its place."""
+    said = _stems(phrase)
+    if len(said) < 2 or said[-1] not in {stem(g) for g in _GENERIC}:
+        return [said]
+    return [said, *([*said[:-1], stem(g)] for g in _GENERIC if stem(g) != said[-1])]
 
 
 def names(sentence: str, name: str, arguments: Mapping[str, Any], declared: Sequence[str] = ()) -> bool:

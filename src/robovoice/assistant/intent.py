@@ -125,6 +125,10 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
         kind = classify(part)
+        if (at := _last_said(clauses)) is not None and clauses[at].kind is ClauseKind.ABILITY \
+                and len(words(bare)) <= 3 and kind is not ClauseKind.ABILITY and not _NOW.search(part) \
+                and not STOP.search(part):
+            kind = ClauseKind.ABILITY  # "Are you able to ring folk? On the screen, like? The doctor?" (text v97)
         if kind is ClauseKind.ABILITY and asks_ever(part, text):
             kind = classify(re.sub(r"\bever\s+", "", part, count=1))  # "would you ever …, for me?"
         if (after := AFTER.match(bare)) is not None:
@@ -311,9 +315,11 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             continue
         clauses.append(Clause(part, kind))
     for i in range(1, len(clauses)):  # "…, you can go to the bathroom, but not before"; "ring Clara. Not at the moment"
+        # the request before it, past a pause: "…, hang on, not yet"
+        j = next(j for j in range(i - 1, -1, -1) if not j or not only_paused([clauses[j].text]))
         if clauses[i].kind is ClauseKind.NEGATED and NOT_BEFORE.match(clauses[i].text.strip()) \
-                and clauses[i - 1].kind is ClauseKind.REQUEST and not STOP.search(clauses[i - 1].text):
-            clauses[i - 1] = Clause(clauses[i - 1].text, ClauseKind.NEGATED)
+                and clauses[j].kind is ClauseKind.REQUEST and not STOP.search(clauses[j].text):
+            clauses[j] = Clause(clauses[j].text, ClauseKind.NEGATED)
     if condition and conditioned is not None:  # a condition after the request, nothing after it to apply to:
         clauses[conditioned] = Clause(clauses[conditioned].text, ClauseKind.ABILITY)  # "…, if I had a fall?"
     if any(JUST_ASKING.search(c.text) for c in clauses):  # "Out of interest, can you …?"
@@ -340,7 +346,7 @@ _I_MEAN = re.compile(r"\s+i mean[t]?[\s.,!?]*$", re.IGNORECASE)
 _OPINION = re.compile(r"^(?:do|d'?) you (?:think|reckon|suppose|imagine)\??$", re.IGNORECASE)
 # "can you call the surgery, or only Dr. Weber?"; "could you dim it, or is it just on and off?" (text test v68)
 # "can you carry the basket to the bedroom, or you only move yourself?" (text test v83)
-_OR_ONLY = re.compile(r"^or (?:(?:is it|are you|do you|can you|does it|can it|you|it) )?(?:only|just|merely)\b",
+_OR_ONLY = re.compile(r"^or (?:(?:is it|is|are you|do you|can you|does it|can it|you|it) )?(?:only|just|merely)\b",
                       re.IGNORECASE)
 _SOMEONES = re.compile(r"^\s+(?:[A-Z]\w+|my \w+|the \w+)'s\b")  # "… see Anna's recipe": hers, not her
 _SEEN = re.compile(r"^\s+(?:something|it|that|this|them|the|a|an|my|our|some|what|how)\b")  # "… see something": a look

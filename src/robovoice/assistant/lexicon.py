@@ -166,6 +166,7 @@ NOT_A_VERB = re.compile(r"^(?:i|you|he|she|we|they|it|this|that|these|those|ther
 WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do not|scratch that|not that|belay that|"
                         r"forget (?:it|that|(?:that )?i (?:said|asked)(?: that| it)?|what i (?:said|asked))|"
                         r"never ?mind|cancel that|scrap (?:that|it)|on second thoughts?|no,? wait|wait,? no|"
+                        r"no,? (?:hang|hold) on|"  # "go to the kitchen, no hang on, not yet" (audio test v88)
                         r"no,? actually|actually,? no|"
                         r"leave (?:it|that)|no need(?: (?:already|anymore|any more|now|then))?)"  # (text test v70)
                         r"\b[\s,]*)+$",
