@@ -1451,3 +1451,17 @@ def test_words_in_another_script_are_talk(text: str, steps: tuple[str, ...]) -> 
 def test_a_pause_before_not_yet_caribbean_turns_and_an_ability_questions_fragments(
         text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # English as a second language (text v98): please in Polish, "like it is", "not necessary", no article,
+    # "in the end" before the last step
+    ("Bathroom, proszę bardzo.", ("Bathroom",)),
+    ("Leave light of projector like it is, don't turn off.", ()),
+    ("Ring Ben? No, not necessary, he visits tomorrow.", ()),
+    ("Wait in kitchen for me, I come soon.", ("Wait in kitchen for me",)),
+    ("First go to bathroom, then kitchen, and in the end back to your charger.",
+     ("First go to bathroom", "kitchen", "in the end back to your charger")),
+])
+def test_english_as_a_second_language(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

@@ -31,10 +31,11 @@ from robovoice.assistant.lexicon import (
 from robovoice.assistant.reading import ClauseKind
 
 _NEGATION = re.compile(
-    r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not now|not yet|not right now|"
+    r"\b(?:don'?t|do not|doesn'?t|does not|didn'?t|did not|never|no need|not necessary|not now|not yet|not right now|"
     r"not just now|not today|not before|not until|let'?s not|shouldn'?t|should not|mustn'?t|must not|"
     r"hold off|rather not|rather you didn'?t|no,|gonnae no|"
-    r"leave (?:\w+ ){1,3}(?:alone|be|as (?:it|they) (?:is|are)|where (?:it|they) (?:is|are)|running|going|shining|"
+    r"leave (?:\w+ ){1,3}(?:alone|be|(?:as|like) (?:it|they) (?:is|are)|where (?:it|they) (?:is|are)|running|going|"
+    r"shining|"
     r"burning|glowing|on|off|in peace|for now|for the moment"
     r"|for the time being)|^forget (?:about )?(?:the|my|your|going|calling|ringing|phoning)\b|"
     r"let (?:it|that|them) be|don'?t touch)\b"
@@ -176,7 +177,9 @@ _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "lo
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
 # an unsure opening before a command (not `lexicon._HEDGE`, a hedge said alone after a request)
 _UNSURE = re.compile(r"^(?:i guess|i suppose|i think|maybe|perhaps),?\s+")
-_PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your)\b", re.IGNORECASE)
+# (or a room with no article, as a second language says it: "wait for us in living room", text test v98)
+_PLACE = re.compile(r"\b(?:in|at|by|to|into|near) (?:the|my|your|(?=(?:kitchen|living room|bedroom|bathroom|hallway"
+                    r"|front door|dock|charger)\b))", re.IGNORECASE)
 # why it goes, not a step: "…, pop off to the kitchen and leave us to it" (text test v92)
 _LEFT_TO_IT = re.compile(r"^leave (?:us|me|them|him|her)(?: (?:two|both|all))? to (?:it|(?:our|their) \w+)\b")
 # how to walk, said to a person: no place, no step ("…, Mkhulu, walk slowly hey", text test v94: it drove there)

@@ -62,6 +62,14 @@ _SPANISH = rules((
 ))
 
 
+# please and thank you as a carer from Poland, Romania or Ukraine says them inside English (text test v98:
+# "Kitchen, proszę." was talk); the words are no English word, so nothing else is read into them
+_COURTESY = rules((
+    (r"\b(?:prosz[eę](?: bardzo)?|v[ăa] rog|te rog)\b|(?<!\w)(?:будь ласка|пожалуйста|прошу)(?!\w)", "please"),
+    (r"\b(?:dzi[eę]kuj[eę](?: bardzo)?|mul[țt]umesc)\b|(?<!\w)(?:дякую|спасибо)(?!\w)", "thank you"),
+))
+
+
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans and French put in
     English."""
@@ -77,7 +85,7 @@ def translated(text: str) -> bool:
 def in_english(text: str) -> str:
     """`text` with the requests, order words and rooms said in Tagalog, Hindi or Spanish put in English,
     and a dialect's turns said as standard English says them (`dialects.as_standard`)."""
-    text = _other_languages(text)
+    text = rewrite(_other_languages(text), _COURTESY)
     text = as_standard(_HINDI_OFF.sub("off", _HINDI_ON.sub("on", text)))  # "Light band karo": off
     spanish = bool(_ANY_SPANISH.search(text))
     text = rewrite(text, _SPANISH)

@@ -20,6 +20,7 @@ FILLER = re.compile(
     r"^(?:(?:(?:just|wait) a (?:sec|second|minute|moment|mo)|please|abeg|kindly|now|ok|okay|so|oh|well|right|alright|"
     r"also|instead|first of all|to (?:begin|start) with|first|quickly|"
     r"firstly|second|secondly|third|thirdly|lastly|last of all|next|finally|just|off you|i mean|i meant|"
+    r"(?:and )?(?:at|in) the (?:very )?end|"  # "…, and at the end back to your dock" (text test v98)
     r"one (?:sec|second|moment)|hey|hi|robot|jarvis|and|then|yes|yeah|actually|sorry|hang on|hold on|oh dear|"
     r"erm|er|um|umm|uh|uhh|uhm|hmm|mm+|mhm|ah|ahh|aah|aw|k|like|what am i saying|what was i thinking|silly me|y'all|yo|"
     r"bro|bruh|dude|yaar|arre|arey|accha|achha|acha|"  # young people's and Hinglish openers (text test v68)
@@ -168,7 +169,8 @@ WITHDRAWAL = re.compile(r"^(?:(?:no|nope|don'?t(?: bother| do that| worry)?|do n
                         r"never ?mind|cancel that|scrap (?:that|it)|on second thoughts?|no,? wait|wait,? no|"
                         r"no,? (?:hang|hold) on|"  # "go to the kitchen, no hang on, not yet" (audio test v88)
                         r"no,? actually|actually,? no|"
-                        r"leave (?:it|that)|no need(?: (?:already|anymore|any more|now|then))?)"  # (text test v70)
+                        r"leave (?:it|that)|no need(?: (?:already|anymore|any more|now|then))?"  # (text test v70)
+                        r"|not (?:necessary|needed))"  # "Call Clara? Nu, bine, not necessary, …" (text test v98)
                         r"\b[\s,]*)+$",
                         re.IGNORECASE)
 # "…, I want to show her my cake": after a request, the person's own plan is the reason for it,
