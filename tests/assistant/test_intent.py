@@ -1465,3 +1465,15 @@ def test_a_pause_before_not_yet_caribbean_turns_and_an_ability_questions_fragmen
 ])
 def test_english_as_a_second_language(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # Mandarin and Cantonese courtesy inside English (text v99)
+    ("Qing come to the living room, I want to show you something.", ("please come to the living room",)),
+    ("Mh goi, the projector close la, too bright.", ("turn off the projector", "too bright")),
+    ("Xiexie, robot, very good.", ()),
+    ("Ring Anna after you go to the kitchen, hao ma?", ("go to the kitchen", "Ring Anna")),
+    ("Is the projector close to the wall?", ("Is the projector close to the wall",)),  # a question, no switch
+])
+def test_mandarin_and_cantonese_courtesy(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

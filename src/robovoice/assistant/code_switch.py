@@ -63,10 +63,15 @@ _SPANISH = rules((
 
 
 # please and thank you as a carer from Poland, Romania or Ukraine says them inside English (text test v98:
-# "Kitchen, proszę." was talk); the words are no English word, so nothing else is read into them
+# "Kitchen, proszę." was talk), and Mandarin and Cantonese ones (text test v99: "qing go to the bedroom",
+# "mh goi come to the kitchen"); the words are no English word, so nothing else is read into them
 _COURTESY = rules((
-    (r"\b(?:prosz[eę](?: bardzo)?|v[ăa] rog|te rog)\b|(?<!\w)(?:будь ласка|пожалуйста|прошу)(?!\w)", "please"),
-    (r"\b(?:dzi[eę]kuj[eę](?: bardzo)?|mul[țt]umesc)\b|(?<!\w)(?:дякую|спасибо)(?!\w)", "thank you"),
+    (r"\b(?:prosz[eę](?: bardzo)?|v[ăa] rog|te rog|qing|q[iǐ]ng|mh? goi|唔該|请|請)\b"
+     r"|(?<!\w)(?:будь ласка|пожалуйста|прошу)(?!\w)", "please"),
+    (r"\b(?:dzi[eę]kuj[eę](?: bardzo)?|mul[țt]umesc|xie ?xie|do ?je|dor ?je|多謝|谢谢)\b"
+     r"|(?<!\w)(?:дякую|спасибо)(?!\w)", "thank you"),
+    (r"\b(?:kuai (?:yi )?dian|faai di)\b", "quickly"), (r"\s*,?\s*\b(?:hao ma|hou m hou)\b(?=\s*[?.!]|$)", ""),
+    (r"\b(?:xiao )?jiqiren\b", "robot"),
 ))
 
 

@@ -79,6 +79,8 @@ _PATOIS = tuple((re.compile(pattern, re.IGNORECASE if flags else 0), english) fo
 # oil" cheers the robot on; "ar" before its name is a particle (its "la", "wor", "mah" at a clause's
 # end are dropped with Singlish's)
 _OPEN = re.compile(r"\b(open|close)\s+(?:the\s+)?(projector|screen)\b", re.IGNORECASE)
+# … and said after it, as Cantonese puts it: "projector open la" (text test v99; not "close to the wall")
+_OPEN_AFTER = re.compile(r"\b(?:the\s+)?(projector|screen)\s+(open|close)\b(?!\s+(?:to|by)\b)", re.IGNORECASE)
 _CHEER = re.compile(r"\badd oil\b[\s,!.]*|\bar\b(?=\s+robot\b)", re.IGNORECASE)
 
 
@@ -175,5 +177,6 @@ def as_standard(text: str) -> str:
     text = _CAN_OR_NOT.sub(r"\1can you \2", text)
     text = rewrite(rewrite(_scots(_maltese(text)), _YORKSHIRE), _PATOIS)  # Patois before the dropped g: "an'"
     text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))
+    text = _OPEN_AFTER.sub(lambda m: f"turn {'on' if m.group(2).lower() == 'open' else 'off'} the {m.group(1)}", text)
     return _OPEN.sub(lambda m: f"turn {'on' if m.group(1).lower() == 'open' else 'off'} the {m.group(2)}",
                      _CHEER.sub("", text))

@@ -126,7 +126,9 @@ ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|
                      r"(?: yourself| over| down| up| through| across| back)*"
                      r"(?: (?:to|into|in|at|inside))? (?:the|my|your) \w+(?: \w+)?"
                      # … and said in the present: "call Doctor Weber after you get to the bedroom" (text test v71)
-                     r"|(?:once|when|after|as soon as) you (?:get|arrive|reach|make it)"
+                     # (… or "after you go to the front door", not "when": whenever it goes, text test v99)
+                     r"|(?:once|when|after|as soon as) you (?:get|arrive|reach|make it"
+                     r"|(?<!when you )(?:go|come|head|drive))"
                      r"(?: back| over| down| up| through)*(?: (?:to|into|in|at)| \w+ (?:in|at))?"
                      r" (?:the|my|your) \w+(?: \w+)?)\s*$",
                      re.IGNORECASE)

@@ -46,7 +46,8 @@ def arrival_first(parts: list[str]) -> list[str]:
         late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part) or AFTER_YOU_DID.search(part)
         if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:  # "once you're in X": X first
             # (text test v57; said in the present, "… after you get to the bedroom": text test v71)
-            there_first = re.match(r"\w+ you(?:'re| are| get| arrive| reach| make it) ", late.group(1)) is not None
+            there_first = re.match(r"\w+ you(?:'re| are| get| arrive| reach| make it| go| come| head| drive) ",
+                                   late.group(1)) is not None
             out += [late.group(1), part[:late.start()]] if there_first else [part[:late.start()], late.group(1)]
         else:
             out.append(part)
