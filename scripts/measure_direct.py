@@ -72,7 +72,7 @@ def step_calls(intent: Intent, index: int, worded: str) -> list[tuple[str, dict[
 # what a look-up is asked with (the read-only tools declare no words): such a step is the model's
 _LOOKS = re.compile(r"\b(?:photo|picture|camera|image|snap|look|see|contacts?|list|battery|charge left|where|which"
                     r"|what)\b", re.IGNORECASE)
-HALTS = ("stop_robot", "cancel_navigation")  # the stop and the cancel keep their own rules (gate.halts, the pose)
+HALTS = ("stop_robot", "cancel_navigation")  # the stop and the cancel keep their own rules (halting.halts, the pose)
 
 
 def direct(text: str) -> list[tuple[str, dict[str, Any]]] | None:

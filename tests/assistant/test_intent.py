@@ -675,7 +675,7 @@ def test_leave_the_thing_leaves_it_be_and_leave_the_room_goes() -> None:
 
 
 def test_an_ability_question_about_stopping_does_not_halt() -> None:
-    from robovoice.assistant.gate import halts
+    from robovoice.assistant.halting import halts
     assert not halts(read_request("Hypothetically, if the cat ran in front of you, could you stop in time?"))
     assert halts(read_request("Hold it! Stay put!"))
 
@@ -1014,7 +1014,7 @@ def test_habits_watching_the_robot_and_requests_told_on(text: str, steps: tuple[
     ("Reroute: the kitchen.", ("the kitchen",)),
     ("ping Anna on the video", ("ping Anna on the video",)),
     ("Drop the call, thanks.", ("Drop the call",)),
-    ("Scrap that trip.", ()),  # a call-off: the cancel runs while the robot moves (gate.halts)
+    ("Scrap that trip.", ()),  # a call-off: the cancel runs while the robot moves (halting.halts)
     ("Ring Ben... ah no, forget I asked, he's at work.", ()),
     ("Go to the kitchen, ah no, the front door.", ("the front door",)),
 ])
@@ -1173,7 +1173,7 @@ def test_times_not_now_after_a_request_routes_of_bare_places_and_call_offs(text:
 
 
 def test_a_call_off_in_a_sailors_words_lets_the_cancel_run_and_kind_enough_does_not() -> None:
-    from robovoice.assistant.gate import halts
+    from robovoice.assistant.halting import halts
     assert halts(read_request("Belay that. Abandon the trip, we're not going anywhere."))
     assert halts(read_request("Drop the trip, we're staying put."))
     assert not halts(read_request("Drop the call."))
@@ -1196,7 +1196,7 @@ def test_a_place_put_first_after_a_pause_enough_for_now_and_once_its_up(text: st
 
 
 def test_enough_alone_still_halts_a_drive() -> None:
-    from robovoice.assistant.gate import halts
+    from robovoice.assistant.halting import halts
     assert halts(read_request("Enough now!"))
 
 

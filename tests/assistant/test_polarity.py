@@ -28,6 +28,7 @@ def _refused(text: str, on: bool) -> str | None:
     ("Go to the kitchen, then put the projector on.", False),
     ("Turn the projector on, I mean off.", True),  # the request as corrected
     ("That screen is too bright, turn it off.", True),  # "it": the screen named before
+    ("Flick the gizmo off. The projector, I mean.", True),  # what the switch is, said after it
 ])
 def test_a_switch_sent_the_other_way_round_is_refused(text: str, on: bool) -> None:
     assert _refused(text, on) == WRONG_WAY

@@ -248,6 +248,6 @@ def classify(clause: str) -> ClauseKind:
                 and said[-1] in ("now", "please") and "'" not in said[1])) \
             and first.split("'")[0] not in _SUBJECTS and first != "enough":
         # a terse command: "projector on", "kitchen, please" (not "enough now": the stop's and the
-        # cancel's, when the robot moves, `gate.halts`; before a request, no step: text test v64)
+        # cancel's, when the robot moves, `halting.halts`; before a request, no step: text test v64)
         return ClauseKind.REQUEST
     return ClauseKind.STATEMENT

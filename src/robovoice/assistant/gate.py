@@ -39,6 +39,7 @@ from robovoice.assistant.fit import (
     usual,
     value_owner,
 )
+from robovoice.assistant.halting import staying
 from robovoice.assistant.lexicon import RELATIONS, words
 from robovoice.assistant.polarity import righted, wrong_way
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
@@ -136,29 +137,6 @@ def model_only_texts() -> tuple[str, ...]:
     return tuple(_HINTS.values())
 
 
-# Words that may ask the robot to stop or call off what it does although no clause reads as a
-# request ("Hold it! Stay put!", "never mind, don't go there after all", "whoa, quit driving"); only with one of them
-# does the robot's stop or cancel run on such words ("don't mind the mess in the bedroom",
-# said while it drove, cancelled the drive in text test v13)
-# (not "hold off on ringing Ben": it puts a call off, no halt; text test v57)
-_HALTING = re.compile(r"\b(?:stop\w*|halt|hold(?! off)|stay|wait|hang on|freeze|forget|never ?mind"
-                      r"|chang\w* (?:my|your) mind"
-                      r"|don'?t (?:bother|go|move|drive)|enough|cancel\w*|call it off|after all|leave it|no further"
-                      r"|turn (?:back|round|around)|quit(?:s|ting)?|abort\w*|call (?:(?:the|that|this) \w+ )?off"
-                      r"|whoa|scrap (?:it|that|this)|scratch that"  # "scrap that route" (text test v54)
-                      r"|belay that|scrub (?:it|that|this)|abandon (?:it|that|this|the)"  # (text test v63)
-                      r"|drop (?:that|this|the) (?:trip|drive|journey|run|errand|route))\b",
-                      re.IGNORECASE)
-
-
-def halts(intent: Intent | None) -> bool:
-    """The words may ask the robot to stop or call off what it does, and do not say to carry on
-    ("keep going, don't stop") nor ask whether it could ("would you be able to stop dead, if I
-    shouted?": text test v32): then its stop or cancel runs even where nothing reads as a request."""
-    return intent is not None and not intent.carries_on and intent.refusal is not ClauseKind.ABILITY and any(
-        _HALTING.search(c.text) for c in intent.clauses)
-
-
 _BACK_REFERENCE = re.compile(r"\b(?:it|them|that|one)\b", re.IGNORECASE)
 
 
@@ -253,6 +231,34 @@ def _another_asked(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any],
         for arg, value in values.items())
 
 
+# A clause with a subject or a verb of being, a sentence of its own: not a place said bare, which
+# may be a step the reading missed ("Then, er, the front door", "from kitchen to bedroom")
+_SENTENCE = re.compile(r"\b(?:i|you|he|she|it|we|they|there|this|that|someone|somebody|who)\b|\w'(?:s|re|m|ve|ll|d)\b"
+                       r"|\b(?:is|are|was|were|am|been|has|have|had|does|did)\b", re.IGNORECASE)
+
+
+def _named_in_talk(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], said: Collection[str],
+                   declared: Mapping[str, Sequence[str]]) -> bool:
+    """This call's listed value is named only in talk, and the requests its words fit name another of
+    its values: "Go to the kitchen, Ben is in the bedroom" and a drive to the bedroom; "Go charge,
+    you're near bed" (text test v97: a drive to the bedroom let through)."""
+    choices = listed(spec.parameters)
+    values = {arg: v for arg, v in arguments.items() if arg in choices and isinstance(v, str)}
+    requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
+    talk = [w for c in intent.clauses if c.kind is ClauseKind.STATEMENT and _SENTENCE.search(c.text)
+            for w in words(c.text)]
+    if not values or not requests or not talk:
+        return False
+    asked = [w for c in requests for w in words(c.text)]
+    fitting = [w for c in requests if _fits(Intent((Clause(c.text, c.kind),), intent.answering), spec.name, arguments,
+                                            said, declared, _glossed(spec, arguments), pooled=False)
+               for w in words(c.text)]
+    return any(unsaid(spec.description, spec.parameters, {arg: value}, asked) and not unsaid(
+        spec.description, spec.parameters, {arg: value}, talk) and any(
+        named_whole(other, spec.description, fitting) for other in choices[arg] if other.lower() != value.lower())
+        for arg, value in values.items())
+
+
 def _only_talk(intent: Intent, why: str | None) -> bool:
     """A call refused as declined or as talk where every clause declines or is talk (no request,
     question or ability question): the robot's own line ("All right, I won't.", "I see.") answers
@@ -300,8 +306,8 @@ def refusal(
         elif spec is not None and switches_the_one_thing_off(
                 intent, name, arguments, said, {t.name: t.parameters for t in tools if not t.read_only}):
             return None  # "turn it off": the one thing it can switch
-        elif not _fits(intent, name, arguments, said, declared, glossed, movers=_movers(name, voice or {}),
-                       pooled=not _moves(name, voice or {})) or \
+        elif not _fits(staying(intent) if (movers := _movers(name, voice or {})) else intent, name, arguments,
+                       said, declared, glossed, movers=movers, pooled=not _moves(name, voice or {})) or \
                 claimed_elsewhere(intent, name, arguments, declared, values, said) or owner:
             why = OTHER  # "plug yourself in" and the projector; "get Ben up on the screen" and the projector
         elif spec is not None and unsaid(spec.description, spec.parameters, arguments, heard):
@@ -313,6 +319,8 @@ def refusal(
         elif spec is not None and not _moves(name, voice or {}) and _another_asked(intent, spec, arguments, said,
                                                                                  declared):
             why = OTHER  # "hang up with Anna, then call Doctor Weber": the call asked is Dr. Weber's
+        elif spec is not None and _named_in_talk(intent, spec, arguments, said, declared):
+            why = OTHER  # "go to the kitchen, Ben is in the bedroom": the drive asked is to the kitchen
         else:
             return None
     answer = _only_talk(intent, why) or (why == ClauseKind.ABILITY.value and spec is not None

@@ -27,7 +27,8 @@ from robovoice.assistant.events import (
     TurnStarted,
     notify,
 )
-from robovoice.assistant.gate import NOT_REQUESTED, checked, halts, held
+from robovoice.assistant.gate import NOT_REQUESTED, checked, held
+from robovoice.assistant.halting import halts
 from robovoice.assistant.intent import read_request
 from robovoice.assistant.lexicon import words
 from robovoice.assistant.metrics import TurnMetrics
@@ -364,7 +365,7 @@ class Assistant:
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and halts(intent)):
             # the robot's stop or cancel when the words asked for nothing new but may mean it
-            # ("Hold it! Stay put!" read as talk, "never mind" during a drive; `gate.halts`): it
+            # ("Hold it! Stay put!" read as talk, "never mind" during a drive; `halting.halts`): it
             # runs unless the robot is known to stand still, where it would do nothing the person
             # asked for ("Wait, don't call anyone." answered "I am standing still.")
             refused = refused if await self._standing_still(voice) else None

@@ -17,7 +17,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from robovoice.assistant.fit import names, refers_back
-from robovoice.assistant.lexicon import words
+from robovoice.assistant.lexicon import fragment, words
 from robovoice.assistant.reading import ClauseKind, Intent
 
 # Opposite words a yes/no argument's description may pair: the first for true, the second for false.
@@ -37,14 +37,21 @@ def _pair(description: str) -> tuple[str, str] | None:
     return None
 
 
+def _names_it(text: str, name: str, declared: Sequence[str]) -> bool:
+    """A verbless clause naming the tool's thing, which says what the request before it meant: "Put
+    the thingy on. The picture box." (text test v97: the projector let through either way round)."""
+    return bool(text) and fragment(text) and names(text, name, {}, declared)
+
+
 def _wanted(intent: Intent, name: str, parameters: Mapping[str, Any], arguments: Mapping[str, Any],
             declared: Sequence[str]) -> tuple[str, str, bool] | None:
     """The yes/no argument this call sends the other way round from the words, the word they say
     ("off") and the value it means (False); None when the call goes the way they say, or they do
     not say."""
     properties = parameters.get("properties") or {}
-    asked = [c.text for c in intent.clauses if c.kind is ClauseKind.REQUEST
-             and (names(c.text, name, {}, declared) or refers_back(c.text))]
+    requests = [c.text if c.kind is ClauseKind.REQUEST else "" for c in intent.clauses]
+    asked = [text for i, text in enumerate(requests) if text and (names(text, name, {}, declared) or refers_back(
+        text) or (i + 1 < len(requests) and _names_it(requests[i + 1], name, declared)))]
     said = {w for text in asked for w in words(text)}
     for arg, value in arguments.items():
         schema = properties.get(arg)
