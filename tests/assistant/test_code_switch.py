@@ -21,7 +21,7 @@ from robovoice.assistant.intent import read_request
     ("I've got a llama at the farm", "I've got a llama at the farm"),
     ("The sala is my favourite room", "The sala is my favourite room"),  # no Spanish request said
     ("Call Al and then go to the kitchen", "Call Al and then go to the kitchen"),
-    ("No apagues el projector", "No apagues el projector"),  # a Spanish "don't": not made a request
+    ("No apagues el projector", "don't turn off el projector"),  # a Spanish "don't": an English one, no request
 ])
 def test_spanish_and_hindi_requests_are_put_in_english(said: str, english: str) -> None:
     assert in_english(said) == english
