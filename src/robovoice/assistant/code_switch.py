@@ -15,6 +15,7 @@ from robovoice.assistant.afrikaans import from_afrikaans
 from robovoice.assistant.dialects import as_standard, rewrite, rules
 from robovoice.assistant.french import from_french
 from robovoice.assistant.hindi import from_hindi
+from robovoice.assistant.italian_greek import from_italian_greek
 from robovoice.assistant.pidgin import from_pidgin
 from robovoice.assistant.spanish import from_spanish, said_in_spanish
 from robovoice.assistant.swahili import from_swahili
@@ -39,14 +40,14 @@ _COURTESY = rules((
 
 
 def _other_languages(text: str) -> str:
-    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans and French put in
-    English."""
-    return from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
+    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Italian and
+    Greek put in English."""
+    return from_italian_greek(from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text)))))))
 
 
 def translated(text: str) -> bool:
-    """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French or
-    Spanish words that `in_english` puts in English (a dialect of English is not another language)."""
+    """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
+    Italian, Greek or Spanish words that `in_english` puts in English (a dialect of English is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 

@@ -170,10 +170,21 @@ def _scots(text: str) -> str:
     return rewrite(_SCOTS_WORD.sub(word, text), _SCOTS)  # after the words: "the noo" is "the now", then "now"
 
 
+# Turns of English as a second language: "…, and after you go to the charger" is Italian's "e dopo",
+# Spanish's "y después" (and then), not "once you have gone" (text test v101: the drive was put first);
+# "to the living room you go" and "off to bed you go" put the drive after its place
+_AND_AFTER_YOU = re.compile(r",?\s+and after you (?=(?:go|come|call|ring|switch|turn|put|close|end|hang|head|take)\b)",
+                            re.IGNORECASE)
+_PLACE_YOU_GO = re.compile(r"\b(?:off |(back) )?(to|into) ((?:the|your|my) \w+(?: room| door| dock)?) you go\b",
+                           re.IGNORECASE)
+
+
 def as_standard(text: str) -> str:
     """`text` with the turns of Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese, Scots
     and Yorkshire English said as standard English says them."""
     text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
+    text = _PLACE_YOU_GO.sub(lambda m: f"go {'back ' if m.group(1) else ''}{m.group(2)} {m.group(3)}",
+                             _AND_AFTER_YOU.sub(", and then you ", text))
     text = _CAN_OR_NOT.sub(r"\1can you \2", text)
     text = rewrite(rewrite(_scots(_maltese(text)), _YORKSHIRE), _PATOIS)  # Patois before the dropped g: "an'"
     text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))

@@ -97,7 +97,8 @@ STOP = re.compile(rf"\bstop\b(?!(?:,? stop)*{_HABIT})|(?<![\w'] )\b(?:hold|keep|
                   r"|\bhold it (?:right )?there\b", re.IGNORECASE)  # (text test v49)
 # The robot's own actions, as verbs after "you": "Robot, you ring Anna" (addressee), "you go in
 # the kitchen" (clause_kind)
-ROBOT_ACTIONS = "go|drive|head|come|ring|call|phone|dial|video|switch|turn|put|return|cancel|end|hang|pop|nip"
+ROBOT_ACTIONS = ("go|drive|head|come|ring|call|phone|dial|video|switch|turn|put|return|cancel|end|hang|pop|nip"
+                 "|close|finish")  # "robot, you close the call" (text test v101)
 # "First you go to bathroom": after an ordering word, "you" and an imperative is a step asked
 IN_ORDER = re.compile(r"\b(?:first|firstly|next|then|finally)\b", re.IGNORECASE)
 YOU_DO = re.compile(rf"^you (?:{'|'.join(sorted(IMPERATIVES))})\b", re.IGNORECASE)
