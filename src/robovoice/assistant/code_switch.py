@@ -15,6 +15,7 @@ from robovoice.assistant.afrikaans import from_afrikaans
 from robovoice.assistant.arabic import from_arabic
 from robovoice.assistant.dialects import as_standard, rewrite, rules
 from robovoice.assistant.french import from_french
+from robovoice.assistant.german_dutch import from_german_dutch
 from robovoice.assistant.hindi import from_hindi
 from robovoice.assistant.italian_greek import from_italian_greek
 from robovoice.assistant.pidgin import from_pidgin
@@ -41,16 +42,16 @@ _COURTESY = rules((
 
 
 def _other_languages(text: str) -> str:
-    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Italian, Greek
-    and Arabic put in English."""
+    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Italian, Greek,
+    Arabic, German and Dutch put in English."""
     text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
-    return from_arabic(from_italian_greek(text))
+    return from_german_dutch(from_arabic(from_italian_greek(text)))
 
 
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
-    Italian, Greek, Arabic or Spanish words that `in_english` puts in English (a dialect of English is not
-    another language)."""
+    Italian, Greek, Arabic, German, Dutch or Spanish words that `in_english` puts in English (a dialect of
+    English is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 
