@@ -364,10 +364,9 @@ class Assistant:
         await emit(called)
         if (refused is not None and request.name in voice and voice[request.name].role in ("stop", "cancel")
                 and halts(intent)):
-            # the robot's stop or cancel when the words asked for nothing new but may mean it
-            # ("Hold it! Stay put!" read as talk, "never mind" during a drive; `halting.halts`): it
-            # runs unless the robot is known to stand still, where it would do nothing the person
-            # asked for ("Wait, don't call anyone." answered "I am standing still.")
+            # the robot's stop or cancel when the words may mean it though nothing new was asked ("Hold it!
+            # Stay put!" read as talk, "never mind" during a drive; `halting.halts`): it runs unless the robot
+            # is known to stand still ("Wait, don't call anyone." answered "I am standing still.")
             refused = refused if await self._standing_still(voice) else None
         if refused is None and doubtful and self.checks and (asked := confirm_question(voice, request.name,
                                                                                         request.arguments)):
