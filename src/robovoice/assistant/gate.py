@@ -211,6 +211,26 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
                 glossed, elsewhere, kinds, pooled=pooled)
 
 
+def _listed_values(spec: ToolSpec, arguments: Mapping[str, Any]) -> dict[str, str]:
+    """The call's arguments whose values the tool lists (a place, a contact)."""
+    choices = listed(spec.parameters)
+    return {arg: v for arg, v in arguments.items() if arg in choices and isinstance(v, str)}
+
+
+def _fitting_words(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], said: Collection[str],
+                   declared: Mapping[str, Sequence[str]], requests: Sequence[Clause]) -> list[str]:
+    """The words of those `requests` that this call's words fit, each request read alone."""
+    return [w for c in requests if _fits(Intent((Clause(c.text, c.kind),), intent.answering), spec.name, arguments,
+                                         said, declared, _glossed(spec, arguments), pooled=False)
+            for w in words(c.text)]
+
+
+def _names_another(spec: ToolSpec, arg: str, value: str, heard: Sequence[str]) -> bool:
+    """`heard` names another of the values the tool lists for `arg` ("your dock" names the dock)."""
+    return any(named_whole(other, spec.description, heard)
+               for other in listed(spec.parameters)[arg] if other.lower() != value.lower())
+
+
 def _another_asked(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], said: Collection[str],
                    declared: Mapping[str, Sequence[str]]) -> bool:
     """Of several requests, those this call's words fit name another of its listed values and
@@ -218,16 +238,12 @@ def _another_asked(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any],
     named only in the request to end the call (text test v95: the model rang Anna too). (Not for a
     drive: "nip to the kitchen and then come back to the bathroom when I shout" asks both.)"""
     requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
-    choices = listed(spec.parameters)
-    values = {arg: v for arg, v in arguments.items() if arg in choices and isinstance(v, str)}
+    values = _listed_values(spec, arguments)
     if len(requests) < 2 or not values:
         return False
-    fitting = [w for c in requests if _fits(Intent((Clause(c.text, c.kind),), intent.answering), spec.name, arguments,
-                                            said, declared, _glossed(spec, arguments), pooled=False)
-               for w in words(c.text)]
+    fitting = _fitting_words(intent, spec, arguments, said, declared, requests)
     return bool(fitting) and any(
-        unsaid(spec.description, spec.parameters, {arg: value}, fitting) and any(  # ("your dock" names the dock)
-            named_whole(other, spec.description, fitting) for other in choices[arg] if other.lower() != value.lower())
+        unsaid(spec.description, spec.parameters, {arg: value}, fitting) and _names_another(spec, arg, value, fitting)
         for arg, value in values.items())
 
 
@@ -242,21 +258,17 @@ def _named_in_talk(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any],
     """This call's listed value is named only in talk, and the requests its words fit name another of
     its values: "Go to the kitchen, Ben is in the bedroom" and a drive to the bedroom; "Go charge,
     you're near bed" (text test v97: a drive to the bedroom let through)."""
-    choices = listed(spec.parameters)
-    values = {arg: v for arg, v in arguments.items() if arg in choices and isinstance(v, str)}
+    values = _listed_values(spec, arguments)
     requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
     talk = [w for c in intent.clauses if c.kind is ClauseKind.STATEMENT and _SENTENCE.search(c.text)
             for w in words(c.text)]
     if not values or not requests or not talk:
         return False
     asked = [w for c in requests for w in words(c.text)]
-    fitting = [w for c in requests if _fits(Intent((Clause(c.text, c.kind),), intent.answering), spec.name, arguments,
-                                            said, declared, _glossed(spec, arguments), pooled=False)
-               for w in words(c.text)]
-    return any(unsaid(spec.description, spec.parameters, {arg: value}, asked) and not unsaid(
-        spec.description, spec.parameters, {arg: value}, talk) and any(
-        named_whole(other, spec.description, fitting) for other in choices[arg] if other.lower() != value.lower())
-        for arg, value in values.items())
+    fitting = _fitting_words(intent, spec, arguments, said, declared, requests)
+    return any(unsaid(spec.description, spec.parameters, {arg: value}, asked)
+               and not unsaid(spec.description, spec.parameters, {arg: value}, talk)
+               and _names_another(spec, arg, value, fitting) for arg, value in values.items())
 
 
 def _only_talk(intent: Intent, why: str | None) -> bool:
