@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.dialects import rewrite, rules
+from robovoice.assistant.dialects import rewrite_where, rules
 
 _BEL = r"(?-i:[Bb]el)(?= (?-i:[A-Z])| my\b)"  # "bel Anna": ring her (not Bel, a name, alone)
 _MARKER = re.compile(r"\b(?:na die|asseblief|asb|dankie|moenie|nie|nog nie|netnou|gou|kombuis|badkamer|slaapkamer"
@@ -48,6 +48,4 @@ _RULES = rules((
 
 def from_afrikaans(text: str) -> str:
     """`text` with its Afrikaans and isiZulu put in English; unchanged where none was said."""
-    if not _MARKER.search(text):
-        return text
-    return re.sub(r"^[\s,]+", "", rewrite(text, _RULES))
+    return rewrite_where(_MARKER, text, _RULES)

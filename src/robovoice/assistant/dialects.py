@@ -27,6 +27,14 @@ def rewrite(text: str, table: Rules) -> str:
     return text
 
 
+def rewrite_where(marker: re.Pattern[str], text: str, table: Rules) -> str:
+    """`text` rewritten by `table` where `marker` finds a word only that language has, without the commas
+    and spaces a dropped opener left at its start; unchanged where it finds none (`french`, `pidgin`, …)."""
+    if not marker.search(text):
+        return text
+    return re.sub(r"^[\s,]+", "", rewrite(text, table))
+
+
 # Singlish (text test v70): its particles say nothing asked ("Off the projector lah"); "X can or
 # not?" is "can you X?"; "see got water on the floor or not" is "see if there is …"; "go toilet"
 # is "go to the toilet"

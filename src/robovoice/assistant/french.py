@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.dialects import rewrite, rules
+from robovoice.assistant.dialects import rewrite_where, rules
 
 _VERB = r"(?:allume|éteins|eteins|ferme|appelle|téléphone|va|viens|raccroche|arrête|arrete|retourne|reviens)"
 _MARKER = re.compile(r"\b(?:allume|éteins|eteins|appelle|raccroche|arrête|s'il (?:te|vous) pla[iî]t|merci|pis"
@@ -54,6 +54,4 @@ _RULES = rules((
 
 def from_french(text: str) -> str:
     """`text` with its French put in English; unchanged where no French word was said."""
-    if not _MARKER.search(text):
-        return text
-    return re.sub(r"^[\s,]+", "", rewrite(text, _RULES))
+    return rewrite_where(_MARKER, text, _RULES)

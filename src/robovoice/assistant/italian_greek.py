@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.dialects import rewrite, rules
+from robovoice.assistant.dialects import rewrite_where, rules
 
 _MARKER = re.compile(r"\b(?:[oó]chi|ohi|parakal[oó]|efcharist[oó]|efharist[oó]|[eé]la|siga siga|gr[ií]gora|am[eé]sws"
                      r"|am[eé]sos|[aá]vrio|arg[oó]tera|allora|per favore|per piacere|grazie|subito|piano piano|domani"
@@ -36,6 +36,4 @@ _RULES = rules((
 
 def from_italian_greek(text: str) -> str:
     """`text` with its Italian and Greek put in English; unchanged where no word only they have was said."""
-    if not _MARKER.search(text):
-        return text
-    return re.sub(r"^[\s,]+", "", rewrite(text, _RULES))
+    return rewrite_where(_MARKER, text, _RULES)

@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import re
 
-from robovoice.assistant.dialects import rewrite, rules
+from robovoice.assistant.dialects import rewrite_where, rules
 
 _MARKER = re.compile(r"\b(?:abeg|oya|ngwa|ehen|ehn|wetin|abi|sebi|shey|dey|una|wahala|comot|waka|sabi|pikin"
                      r"|chale|chaley|biko|jare|sef|kashe|kunna|make (?:you|we)|no be|sharp sharp|e don"
@@ -61,7 +61,4 @@ _RULES = rules((
 
 def from_pidgin(text: str) -> str:
     """`text` with its Pidgin requests put in English; unchanged where no Pidgin word was said."""
-    if not _MARKER.search(text):
-        return text
-    text = rewrite(text, _RULES)
-    return re.sub(r"^[\s,]+", "", text)
+    return rewrite_where(_MARKER, text, _RULES)
