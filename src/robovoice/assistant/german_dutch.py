@@ -13,7 +13,8 @@ import re
 
 from robovoice.assistant.dialects import rewrite, rules
 
-# the verb, not a noun ("end the call then go"): at the start, or after "and" or a comma
+# "call then Ben", "go then to the kitchen": the verb before its "then", as German says it; the verb,
+# not a noun ("end the call then go"): at the start, or after "and" or a comma
 _VERB_THEN = r"(?:^|(?<=\band )|(?<=, ))(call|ring|phone|go|drive|come)\s+then\s+"
 _THING = r"(?:the |that |this |your |my |de |der |den |die )?(?:beamer|projector|light|it)"
 _MARKER = re.compile(r"\b(?:beamer|bitte|danke|dankeschön|genau|ach so|jawohl|nein|nee|alsjeblieft|alstublieft"
@@ -32,7 +33,6 @@ _RULES = rules((
     # "switch the beamer out", "Beamer aus": off; "Beamer an": on
     (r"\b(switch|turn|make|put|do|set)\s+(" + _THING + r")\s+(?:out|aus)\b", r"\1 \2 off"),
     (r"\b(the projector|it)\s+(?:out|aus)\b", r"\1 off"), (r"\b(the projector)\s+an\b(?=\s*[,.!?]|\s*$)", r"\1 on"),
-    # "call then Ben", "go then to the kitchen": the verb before its "then", as German says it
 ))
 
 
