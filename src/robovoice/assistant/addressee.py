@@ -69,7 +69,7 @@ _NAME_INSIDE = re.compile(r"(?<=\w),\s+([A-Z][a-z]+)\s*(?:,|[.!?]*$)")
 _APPOSITION = re.compile(r"\b(?:" + "|".join(sorted(RELATIONS | {"doctor", "gp", "contact"})) + r"),$", re.IGNORECASE)
 
 
-def _a_person(name: str) -> bool:
+def a_person(name: str) -> bool:
     """`name` (said first, or set off by commas) may name a person: capitalised or a family word,
     and no greeting, exclamation, adverb ("Hypothetically, …"), order word or the robot's name."""
     last = name.split()[-1].lower()
@@ -83,7 +83,7 @@ def _opening_name(sentence: str) -> tuple[re.Match[str], str] | None:
     """The person's name `sentence` opens with (`_CALLED`), and the words up to the next
     punctuation after it; None when it opens with no name."""
     called = _CALLED.match(sentence.strip())
-    if called is None or not _a_person(called.group("name")):
+    if called is None or not a_person(called.group("name")):
         return None
     return called, re.split(r"[,;:.!?]", called.group("rest"), maxsplit=1)[0].strip()
 
@@ -94,7 +94,7 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
     not only a family word or "you" after it."""
     if robot_called and not _ROBOT_CALLED.search(sentence) and not STOP.search(sentence):
         for inside in _NAME_INSIDE.finditer(sentence):
-            if _a_person(inside.group(1)) and not _APPOSITION.search(sentence[:inside.start() + 1]):
+            if a_person(inside.group(1)) and not _APPOSITION.search(sentence[:inside.start() + 1]):
                 return True
     if (opening := _opening_name(sentence)) is None:
         return False

@@ -169,6 +169,11 @@ _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+"
                           r"|^(?:on|off) (?:the|that|your|this|my) (?:projector|telly|tv|television|screen|lamp"
                           r"|light)s?"
                           r"(?: (?:so|then|and|please|now|for)\b|$)", re.IGNORECASE)
+# a thing switched, said first: "projector on for my drama" (text test v105: no step)
+_SWITCHED = re.compile(r"^(?:the |that |your |my )?(?:projector|telly|tv|television|screen)s? (?:on|off)\b"
+                       r"(?! (?:the|a|my|your|its)\b)", re.IGNORECASE)
+# what the speaker will do themselves: "First let me find my glasses" (text test v105: put first, then the call)
+_LET_ME = re.compile(r"^let me (?!(?:know|see|hear|talk|speak|have|call|ring|phone|video)\b)\w+", re.IGNORECASE)
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
 _WHERE_WANTED = re.compile(r"(?:'s| is) where " + WANTED_THERE, re.IGNORECASE)
 _SUBJECTS = frozenset({"i", "we", "he", "she", "they", "it", "that", "this", "there", "you"})  # "I'm off now"
@@ -201,7 +206,7 @@ def classify(clause: str) -> ClauseKind:
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
     if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)) \
-            or _LEFT_TO_IT.match(lowered) or _MANNER_ONLY.match(lowered):
+            or _LEFT_TO_IT.match(lowered) or _MANNER_ONLY.match(lowered) or _LET_ME.match(lowered):
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)"
                                                # "I don't want you to stop" (text test v59)
@@ -237,7 +242,8 @@ def classify(clause: str) -> ClauseKind:
                                 and not _TOLD_OF.search(lowered[shape.end():])):
         return ClauseKind.REQUEST
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text) \
-            or _COURSE.match(text) or _CAN_GO.match(text) or _TO_PLACE.match(text) or _NOW_PLACE.match(clause.strip()):
+            or _COURSE.match(text) or _CAN_GO.match(text) or _TO_PLACE.match(text) or _NOW_PLACE.match(clause.strip()) \
+            or _SWITCHED.match(text):
         return ClauseKind.REQUEST
     if first in _WH and len(said) > 2 and said[1] in _TELLS:
         return ClauseKind.STATEMENT  # "…, where I think I left my hymn book": a place described, no question

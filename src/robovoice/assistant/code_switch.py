@@ -19,6 +19,8 @@ from robovoice.assistant.german_dutch import from_german_dutch
 from robovoice.assistant.hindi import from_hindi
 from robovoice.assistant.italian_greek import from_italian_greek
 from robovoice.assistant.pidgin import from_pidgin
+from robovoice.assistant.portuguese import from_portuguese
+from robovoice.assistant.russian_turkish import from_russian_turkish
 from robovoice.assistant.spanish import from_spanish, said_in_spanish
 from robovoice.assistant.swahili import from_swahili
 from robovoice.assistant.tagalog import from_tagalog
@@ -38,19 +40,25 @@ _COURTESY = rules((
      r"|(?<!\w)(?:дякую|спасибо)(?!\w)", "thank you"),
     (r"\b(?:kuai (?:yi )?dian|faai di)\b", "quickly"), (r"\s*,?\s*\b(?:hao ma|hou m hou)\b(?=\s*[?.!]|$)", ""),
     (r"\b(?:xiao )?jiqiren\b", "robot"),
+    # Korean (text test v105): a name's honorific or call ("Clara-ssi", "Anna-ya") is the name; please,
+    # thank you, quickly
+    (r"\b([A-Z][a-z]{2,})-(?:ssi|nim|ya|ah)\b", r"\1"), (r"\bjebal\b", "please"),
+    (r"\b(?:kamsahamnida|gamsahamnida|gomawo(?:yo)?|komawo(?:yo)?)\b", "thank you"),
+    (r"\bppalli(?: ppalli)?\b", "quickly"),
 ))
 
 
 def _other_languages(text: str) -> str:
-    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Italian, Greek,
-    Arabic, German and Dutch put in English."""
+    """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
+    Greek, Arabic, German, Dutch, Russian and Turkish put in English."""
     text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
-    return from_german_dutch(from_arabic(from_italian_greek(text)))
+    return from_russian_turkish(from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text)))))
 
 
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
-    Italian, Greek, Arabic, German, Dutch or Spanish words that `in_english` puts in English (a dialect of
+    Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish or Spanish words that `in_english` puts
+    in English (a dialect of
     English is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 

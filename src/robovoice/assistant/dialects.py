@@ -186,6 +186,35 @@ _AND_AFTER_YOU = re.compile(r",?\s+and after you (?=(?:go|come|call|ring|switch|
 _PLACE_YOU_GO = re.compile(r"\b(?:off |(back) )?(to|into) ((?:the|your|my) \w+(?: room| door| dock)?) you go\b",
                            re.IGNORECASE)
 
+# the verb after its object, as Korean, Japanese and Turkish put it: "Bathroom you go instead", "kitchen
+# go", "Doctor Weber call please" (text test v105: no step); a clause's own start only, not "let it go"
+_OPENS = r"(^|[.!?,;:\u2026\u2014\u2013-]\s*|\b(?:and|then|but|so|now|first)\s+)"
+_NOT_A_PLACE = (r"(?!(?i:i|we|you|they|he|she|it|let's|here|there|off|back|home|away|on|out|up|down|in|over|ready|set"
+                r"|steady|get|who|where|what|then|now|and|so|to|must|should|can|will|please|just|oh|go|let|good|bad"
+                r"|close|last|final|tough|great|nice|phone|video|ok|okay|yes|yeah|yep|right|alright|come|lets|ah|hey|hi|all"
+                r"|everyone|everybody|nobody|someone|somebody|the|a|an|this|that|these|those|his|her|our|their|what|which|whose"
+                r"|any|every|each|another|long|short|quick|missed|conference|group|wake|next|first|brief|same|big)\b)")
+_PLACE_GO = re.compile(_OPENS + r"((?:the |my |your )?" + _NOT_A_PLACE + r"[a-z]+(?: (?:room|door|dock))?) (?:you )?go"
+                       r"(?= (?:instead|first|now|please|quickly|then|too)\b|\s*(?:[,.!?;:\u2026\u2014\u2013-]|$))",
+                       re.IGNORECASE)
+_NAME_CALL = re.compile(_OPENS + r"((?:(?:Dr\.?|Doctor|Mr|Mrs|Ms) )?" + _NOT_A_PLACE + r"[A-Z][a-z]+) (?:you )?"
+                        r"(call|ring|phone|video call)(?= (?:please|now|first|then)\b|\s*(?:[,.!?;:\u2026]|$))")
+
+
+# "Hallway I said, hallway": the place said again, with emphasis (text test v106); "and last you call my
+# Anna": the last step, as "finally" says it; "Close call, projector off": the end of the call, said
+# first (not "that was a close call")
+_I_SAID = re.compile(_OPENS + r"((?:the |my )?[a-z]+(?: room| door)?) i said(?=\s*(?:[,.!?;]|$))", re.IGNORECASE)
+_LAST_YOU = re.compile(r"\b(and |then )?last(?:ly)?,? (?=you \w)", re.IGNORECASE)
+_CLOSE_CALL = re.compile(_OPENS + r"close (?:the |this |that )?(?:video )?call\b", re.IGNORECASE)
+
+
+def _object_first(text: str) -> str:
+    text = _CLOSE_CALL.sub(r"\1end the call", _LAST_YOU.sub(r"\1finally ", _I_SAID.sub(r"\1\2", text)))
+    said = _PLACE_GO.sub(lambda m: m.group(1) + "go to " + ("" if re.match(r"(?:the|my|your) ", m.group(2), re.I)
+                                                             else "the ") + m.group(2).lower(), text)
+    return _NAME_CALL.sub(lambda m: f"{m.group(1)}{m.group(3)} {m.group(2)}", said)
+
 
 def as_standard(text: str) -> str:
     """`text` with the turns of Singlish, Southern US, Jamaican Patois, Hong Kong, Maltese, Scots
@@ -193,7 +222,7 @@ def as_standard(text: str) -> str:
     text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
     text = _PLACE_YOU_GO.sub(lambda m: f"go {'back ' if m.group(1) else ''}{m.group(2)} {m.group(3)}",
                              _AND_AFTER_YOU.sub(", and then you ", text))
-    text = _CAN_OR_NOT.sub(r"\1can you \2", text)
+    text = _CAN_OR_NOT.sub(r"\1can you \2", _object_first(text))
     text = rewrite(rewrite(_scots(_maltese(text)), _YORKSHIRE), _PATOIS)  # Patois before the dropped g: "an'"
     text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))
     text = _OPEN_AFTER.sub(lambda m: f"turn {'on' if m.group(2).lower() == 'open' else 'off'} the {m.group(1)}", text)

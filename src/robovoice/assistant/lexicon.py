@@ -35,7 +35,7 @@ FILLER = re.compile(
 )
 # haste said after a request: "Hallway, and quick about it." (a tag; after a bare place it asks for it)
 _HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?(?:sharpish|smartish)|chop chop|pronto|"
-          r"quick smart|"  # (text test v55)
+          r"quick smart|quick,? quick|"  # (text test v55; v106)
           r"(?:real|really|super) quick(?: like)?|asap|right away|straight away|at once|"  # (text test v63)
           r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
           # … and how to go: "bathroom, please, quietly" (audio test v33)

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.addressee import a_person
 from robovoice.assistant.amend import go_list
 from robovoice.assistant.clause_kind import classify
 from robovoice.assistant.lexicon import (
@@ -49,7 +50,7 @@ _ASKED = re.compile(r"\b(?:for me|please|for us)\b", re.IGNORECASE)  # "I'll wai
 # a tag that says the clause before it is news ("…, just so you know", audio test v49: misheard, it drove)
 _TOLD = re.compile(r"^(?:(?:just )?so (?:you know|you're aware)|for your information|fyi|(?:i'm )?just (?:saying|"
                    r"letting you know))\W*$", re.IGNORECASE)
-_NOT_THAT = re.compile(r"^(?:(?:no|but|oh),? )*not (?:the|my|your|to the) \w+(?: \w+)?$", re.IGNORECASE)
+_NOT_THAT = re.compile(r"^(?:(?:no|but|oh),? )*not (?:(?:the|my|your|to the) \w+(?: \w+)?|there)$", re.IGNORECASE)
 # the first word of a way told, not asked ("off to the bedroom", "into the kitchen")
 _WAYS = frozenset({"off", "into", "to", "back", "away", "out", "up", "down", "round", "over", "through", "towards",
                    "in", "across", "along"})
@@ -77,8 +78,52 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    return _either_or(_before_that_last(_done_too(_own_and(_not_that_but(_name_list(out, text)), text), text), text),
-                      text)
+    out = _name_list(_said_to(_after_its_name(_past_why(out, text)), text), text)
+    return _either_or(_before_that_last(_done_too(_own_and(_not_that_but(out), text), text), text), text)
+
+
+_WHY_TO = re.compile(r"^(?:so as |in order )?to \w+", re.IGNORECASE)
+
+
+def _past_why(clauses: list[Clause], text: str) -> list[Clause]:
+    """"Primeiro the bathroom, to check the towels, then the bedroom, …": a place said with "then" after
+    what a step is for goes on from that step, as it would right after it (text test v104: no bedroom)."""
+    out = list(clauses)
+    for i in range(2, len(out)):
+        step, why, clause = out[i - 2], out[i - 1], out[i]
+        if clause.kind is ClauseKind.STATEMENT and fragment(clause.text) and why.kind is ClauseKind.STATEMENT \
+                and _WHY_TO.match(why.text.strip()) and step.kind is ClauseKind.REQUEST \
+                and _joined(why, clause, text, r"\s*,?\s*(?:and\s+)?then\s+"):
+            out[i] = Clause(clause.text, ClauseKind.REQUEST)
+    return out
+
+
+# the robot called by name alone, as a clause of its own ("Yo robot, living room")
+_ROBOT_ALONE = re.compile(r"^(?:(?:yo|oi|ok|okay|right|now|so|hey|hi)\W+)?(?:robot|jarvis|robbie)\W*$", re.IGNORECASE)
+# what one says to the robot by name that names no thing: a greeting, thanks, praise, how it is
+_SOCIAL = frozenset({"thanks", "thank", "you", "cheers", "hello", "hi", "hiya", "morning", "evening", "afternoon",
+                     "night", "goodnight", "good", "well", "done", "sorry", "okay", "ok", "yes", "no", "please",
+                     "dear", "love", "buddy", "mate", "boy", "girl", "job", "there", "here", "again", "friend",
+                     "very", "so", "too", "fine", "great", "nice", "lovely", "muy", "bien", "bueno", "molto", "bene",
+                     "sehr", "gut", "zoom", "ready", "steady"})
+
+
+def _after_its_name(clauses: list[Clause]) -> list[Clause]:
+    """"Yo robot, living room, my knees are killing me": a place or a person named right after the
+    robot is called by name is asked for, as "Living room, please" is (text test v101 left it
+    talk); not a greeting or a thanks ("Robot, good morning"), nor a name ("Robot, Anna. Anna, say hello":
+    an introduction as likely as a call)."""
+    out = list(clauses)
+    for i in range(1, len(out)):
+        said = FILLER.sub("", out[i].text.strip()).strip()
+        named = set(words(said)) - ARTICLES
+        if out[i].kind is ClauseKind.STATEMENT and _ROBOT_ALONE.match(out[i - 1].text.strip()) and fragment(said) \
+                and named and not named & (_SOCIAL | IMPERATIVES) and not any(w.endswith("ly") for w in named) \
+                and not any(a_person(w) for w in said.split() if w.lower() not in ARTICLES) \
+                and words(said)[0] != "your" \
+                and not any(c.kind is ClauseKind.REQUEST and named <= set(words(c.text)) for c in out[:i]):
+            out[i] = Clause(out[i].text, ClauseKind.REQUEST)
+    return out
 
 
 _YOU_VERB = re.compile(r"^you (\w+)\b", re.IGNORECASE)
@@ -100,6 +145,19 @@ def _either_or(clauses: list[Clause], text: str) -> list[Clause]:
 
 
 _BARE_NAME = re.compile(r"^(?:and )?[A-Z][a-z]+$")
+_CALL_WITH = re.compile(r"\b(?i:call|ring|phone|video|facetime|dial)\b.*\b(?!I\b)[A-Z][a-z]+")
+
+
+def _said_to(clauses: list[Clause], text: str) -> list[Clause]:
+    """"call Anna for me, Tom.": a name said last, after a comma, behind a call that has its person
+    already is whom the words were said to, not a second call (audio test v95: "…, tá?" heard so)."""
+    out = list(clauses)
+    if len(out) > 1 and out[-1].kind is out[-2].kind is ClauseKind.REQUEST \
+            and (name := out[-1].text.strip()) and re.fullmatch(r"[A-Z][a-z]+", name) \
+            and _CALL_WITH.search(out[-2].text) and _joined(out[-2], out[-1], text, r"\s*,\s*") \
+            and re.search(re.escape(name) + r"\W*$", text):
+        out[-1] = Clause(out[-1].text, ClauseKind.STATEMENT)
+    return out
 
 
 def _name_list(clauses: list[Clause], text: str) -> list[Clause]:

@@ -45,7 +45,8 @@ FIRST = re.compile(r"\bfirst\b(?! (?:time|floor|thing|of all))", re.IGNORECASE)
 # a time said before, held to (audio test v42: "after his lunch you can …, but not before")
 # and a time that is not now, said after the request (text test v63: "…, but not at the moment, thank you")
 NOT_BEFORE = re.compile(r"^(?:but |though )?(?:not (?:before|until then|till then|(?:just )?yet|(?:just |right )?now"
-                        r"|at the moment|at present|this minute|today|tonight)|no sooner)"
+                        r"|at the moment|at present|this minute|today|tonight)|no sooner"
+                        r"|hold off(?: on (?:that|it))?(?: (?:for )?(?:now|a (?:bit|moment|minute|sec(?:ond)?)))?)"
                         r"(?:,? (?:though|thanks|thank you|please|mind))*[\s.!]*$", re.IGNORECASE)
 # "before calling Anna, …" (audio test v59): the same as "before you call Anna"
 _BEFORE_DOING = re.compile(r"^before (\w+)ing\b(.*)$", re.IGNORECASE)

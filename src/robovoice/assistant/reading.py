@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from enum import Enum
 
+from robovoice.assistant.addressee import a_person
 from robovoice.assistant.lexicon import FILLER, IMPERATIVES, fragment, words
 
 
@@ -68,6 +69,13 @@ class Intent:
                 worded.append(_put_right(righted.text, value))
             elif _HERE.search(c.text) and (where := _where_they_are(self.clauses[:i])) is not None:
                 worded.append(f"come to {where}")
+            elif (go := _GO_BARE.match(value)) and _LOOK_ONLY.match(value[go.end():]) and i \
+                    and self.clauses[i - 1].kind is ClauseKind.STATEMENT \
+                    and _PLACE_ALONE.match(said := FILLER.sub("", self.clauses[i - 1].text.strip()).strip()) \
+                    and not a_person(said.split()[-1]) and said.lower() not in _NO_PLACE:
+                rest = re.sub(r"^then\b\W*", "", value[go.end():].strip(), flags=re.IGNORECASE)
+                # "The hallway. You go and look"
+                worded.append(f"go to {said[0].lower()}{said[1:]}" + (f" and {rest}" if rest else ""))
             elif _LAST_FIRST.search(value) and fragment(_LAST_FIRST.sub("", value)):
                 worded.append(_LAST_FIRST.sub("", value))  # "Living room first": the order is the hint's
             else:
@@ -131,6 +139,20 @@ _CARRY_ON = re.compile(r"(?:keep (?:going|driving|on|moving)|carry on|continue|g
 _STAY_THERE = re.compile(r"\b(?:stop|halt|hold it|stay|wait|freeze)(?: right| just)? there\b", re.IGNORECASE)
 _REFERENCE = re.compile(r"\b(?:there|her|him|them|that one|this one|that place|that person|mine|hers|theirs)\b",
                         re.IGNORECASE)
+# a going said without where, right after a place said alone: "The hallway. You go and you look if the
+# post came." (text test v101: the step told to the model left the place out, and it looked with its camera)
+_GO_BARE = re.compile(r"^(?:you\s+)?(?:go|come|head|pop|nip)\b"
+                      r"(?!\s+(?:to|into|in|on|over|up|down|back|out|home|ahead)\b)"
+                      r"\s*(?:and\s+)?(?:you\s+)?", re.IGNORECASE)
+# … and what it is to do there, if anything: have a look ("check the oven is off" says what it is for)
+_LOOK_ONLY = re.compile(r"^(?:(?:have |take )?(?:a )?(?:look|see|check)"
+                        r"(?: around| round| (?:who|what|if|whether)\b.*)?)?"
+                        r"(?:\s+then|\s+now)?\W*$",
+                        re.IGNORECASE)
+_NO_PLACE = frozenset({"ready", "steady", "set", "ok", "okay", "right", "well", "so", "now", "yes", "no", "then",
+                       "anyway", "please", "quick", "come on", "go on", "off", "away"})
+# a place said alone: one or two words, an article before them at most ("Hallway.", "the front door")
+_PLACE_ALONE = re.compile(r"^(?:(?:the|my) )?[A-Za-z]+(?: (?:room|door|way|hall|dock))?$", re.IGNORECASE)
 # "Living room first": the step as told to the model, the order said by the hint
 _LAST_FIRST = re.compile(r",?\s+first\W*$", re.IGNORECASE)
 # a bare "no" or "sorry" between a request and what puts it right; a request its own words

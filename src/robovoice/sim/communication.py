@@ -67,7 +67,9 @@ _LEADING = re.compile(r"^(?:my|the|our)\s+")
 _TITLE = re.compile(r"^(?:dr|doctor|doc|dok|mr|mrs|ms|miss|sir|ma am|maam|madam|mister|auntie|aunty|uncle"
                     r"|tito|tita|kuya|ate|manong|manang|ninong|ninang|mommy|mom|mum|mama|daddy|papa)\s+")
 # a word of endearment or respect after the name: "Anna beta", "Ben ji", "Anna dear" (text test v68), "Anna po"
-_ENDEARMENT = re.compile(r"\s+(?:beta|ji|didi|bhaiya|bhai|dear|love|darling|sweetie|po)$")
+# … and a Korean honorific or a relation said after the name: "Clara-ssi", "Ben samchon" (text test v105)
+_ENDEARMENT = re.compile(r"\s+(?:beta|ji|didi|bhaiya|bhai|dear|love|darling|sweetie|po|ssi|nim|ya|ah|samchon|samchun"
+                         r"|imo|gomo|oppa|unni|eonni|noona|nuna|hyung|hyeong)$")
 
 
 def _normalise(text: str) -> str:
