@@ -27,6 +27,7 @@ CONTACTS = [{"name": "Anna", "relation": "daughter"}, {"name": "Ben", "relation"
         ("Sir Ben", "Ben"), ("Ma'am Anna", "Anna"), ("Auntie Clara", "Clara"),  # a title before (audio test v61)
         ("Tito Ben", "Ben"), ("Ate Clara", "Clara"), ("Doc Weber", "Dr. Weber"), ("Anna po", "Anna"),  # (text v78)
         ("Mommy Anna", "Anna"),  # (text v80)
+        ("Clara-ssi", "Clara"), ("Ben samchon", "Ben"), ("Ben samchon, jebal", "Ben"),  # Korean (text v105)
     ],
 )
 def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
@@ -36,7 +37,7 @@ def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["Bob", "Annabel", "Dr. Miller", "dr", "", "mum", "Weber Anna", "beta", "Bob ji",
-                                  "Sir Bob", "sir"])
+                                  "Sir Bob", "sir", "my son's friend Tom", "Anna and Ben"])
 def test_unknown_contacts_are_not_guessed(text: str) -> None:
     assert find_contact(text) is None
 

@@ -121,7 +121,7 @@ class Assistant:
         if answered is not None:  # "Yes, please." to "Shall I call Anna?": no model step
             return await self._answer_held(ChatMessage("user", user).text, *answered, metrics, emit)
         messages, intent = self._opening(user)
-        asked, worded = (intent.steps, intent.worded_steps) if intent is not None else ((), ())  # worded: for hints
+        asked, worded = (intent.steps, intent.worded_steps) if intent is not None else ((), ())  # worded: hints, naming
         lookups = intent.lookups if intent is not None else ()
         # things asked the turn moved past without a call that ran: a look-up of a compound request
         # the model answered in words, a step whose refused call the model made again
@@ -225,7 +225,7 @@ class Assistant:
                     messages.append(next_step())
                     continue
             if not requested and not (calls or nudged) and step < max_steps - 2 and (
-                    left := turn_rules.claimed_unacted(asked, lookups, tools, text, user)) is not None:
+                    left := turn_rules.claimed_unacted(worded, lookups, tools, text, user)) is not None:
                 nudged, only = True, left[1]  # "I am now at the kitchen." (or nothing) with no call: asked once more
                 messages.append(ChatMessage("user", step_hint(left[0], False, first=False)))
                 continue
@@ -260,7 +260,7 @@ class Assistant:
             more = asked_left(asked, stepped, passed) and step < max_steps - 2
             # only looked up, though a place or a person an action lists was asked for (an answer
             # in words alone is not asked again: there a misread question would be made an action)
-            left = None if more or nudged or step >= max_steps - 2 else turn_rules.unacted(asked, lookups, tools, calls)
+            left = None if more or nudged or step >= max_steps - 2 else turn_rules.unacted(worded, lookups, tools, calls)
             # the call did not fit what was asked: the request is asked for once more, offered what fits
             # (as worded: "come over here to me?" after "I'm in the bathroom" is "come to the bathroom")
             again = not (more or nudged or left is not None) and step < max_steps - 2 and turn_rules.refit(

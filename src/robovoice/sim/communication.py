@@ -82,7 +82,13 @@ def _normalise(text: str) -> str:
 def find_contact(text: str) -> Contact | None:
     key = _normalise(text)
     candidates = {key, _TITLE.sub("", key), _ENDEARMENT.sub("", key)} - {""}
-    return next((c for c in CONTACTS if candidates & c.keys), None)
+    found = next((c for c in CONTACTS if candidates & c.keys), None)
+    if found is not None:
+        return found
+    # one contact's own name among other words: "Ben samchon, jebal" (a dev case of the forty-seventh
+    # session); not a relation word ("my son's friend" is nobody here), nor two names
+    named = [c for c in CONTACTS if re.search(rf"\b{_normalise(c.name).split()[-1]}\b", key)]
+    return named[0] if len(named) == 1 else None
 
 
 @dataclass(frozen=True, slots=True)
