@@ -57,5 +57,5 @@ def test_a_korean_honorific_after_a_name_is_the_name(said: str, name: str) -> No
     ("Ring Clara, then Ben.", ("Ring Clara", "Ben")),
     ("Call Anna, no, Ben.", ("Call Ben",)),
 ])
-def test_a_name_said_last_after_a_call_with_its_person_is_whom_it_was_said_to(said: str, steps: tuple[str, ...]) -> None:
+def test_a_name_said_last_after_a_call_with_its_person_is_whom_it_is_said_to(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).worded_steps == steps

@@ -40,9 +40,9 @@ _COURTESY = rules((
      r"|(?<!\w)(?:дякую|спасибо)(?!\w)", "thank you"),
     (r"\b(?:kuai (?:yi )?dian|faai di)\b", "quickly"), (r"\s*,?\s*\b(?:hao ma|hou m hou)\b(?=\s*[?.!]|$)", ""),
     (r"\b(?:xiao )?jiqiren\b", "robot"),
-    # Korean (text test v105): a name's honorific or call ("Clara-ssi", "Anna-ya") is the name; please,
-    # thank you, quickly
-    (r"\b([A-Z][a-z]{2,})-(?:ssi|nim|ya|ah)\b", r"\1"), (r"\bjebal\b", "please"),
+    # Korean (text test v105): a name called ("Anna-ya") is the name (not "Clara-ssi": the honorific is
+    # part of the name the model passes on, and the robot's contacts read it); please, thank you, quickly
+    (r"\b([A-Z][a-z]{2,})-(?:ya|ah)\b", r"\1"), (r"\bjebal\b", "please"),
     (r"\b(?:kamsahamnida|gamsahamnida|gomawo(?:yo)?|komawo(?:yo)?)\b", "thank you"),
     (r"\bppalli(?: ppalli)?\b", "quickly"),
 ))

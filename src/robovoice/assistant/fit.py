@@ -41,7 +41,9 @@ def refers_back(text: str) -> bool:
     said = words(text)
     if said and set(said) <= _BARE_SWITCH and set(said) & {"on", "off"}:
         return True
+    # (an "it" that is the subject names nothing asked: "go and check who it is", text test v105)
     return any(w in _BACK_REFERENCE and (w not in ("this", "that") or i + 1 == len(said) or said[i + 1] in _POINTS_ON)
+               and not (w == "it" and said[i + 1:i + 2] in (["is"], ["was"]))
                for i, w in enumerate(said))
 
 

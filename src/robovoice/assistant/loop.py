@@ -258,9 +258,9 @@ class Assistant:
                 if isinstance(hint, str):
                     model_only.add_hint(hint)
             more = asked_left(asked, stepped, passed) and step < max_steps - 2
-            # only looked up, though a place or a person an action lists was asked for (an answer
-            # in words alone is not asked again: there a misread question would be made an action)
-            left = None if more or nudged or step >= max_steps - 2 else turn_rules.unacted(worded, lookups, tools, calls)
+            # only looked up, though a listed place or person was asked (not after words alone: `unacted`)
+            left = None if more or nudged or step >= max_steps - 2 else \
+                turn_rules.unacted(worded, lookups, tools, calls)
             # the call did not fit what was asked: the request is asked for once more, offered what fits
             # (as worded: "come over here to me?" after "I'm in the bathroom" is "come to the bathroom")
             again = not (more or nudged or left is not None) and step < max_steps - 2 and turn_rules.refit(
