@@ -24,6 +24,7 @@ from robovoice.assistant.russian_turkish import from_russian_turkish
 from robovoice.assistant.spanish import from_spanish, said_in_spanish
 from robovoice.assistant.swahili import from_swahili
 from robovoice.assistant.tagalog import from_tagalog
+from robovoice.assistant.vietnamese_japanese import from_vietnamese_japanese
 
 # Hindi's "switch off" and "switch on", said after the thing in Indian English (text test v68)
 _HINDI_DO = r"\s+(?:karo|kar do|kar de|kardo|karde|kijiye|kar dijiye|kar dena)\b"
@@ -50,16 +51,16 @@ _COURTESY = rules((
 
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
-    Greek, Arabic, German, Dutch, Russian and Turkish put in English."""
+    Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese and Japanese put in English."""
     text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
-    return from_russian_turkish(from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text)))))
+    text = from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text))))
+    return from_vietnamese_japanese(from_russian_turkish(text))
 
 
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
-    Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish or Spanish words that `in_english` puts
-    in English (a dialect of
-    English is not another language)."""
+    Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese or Spanish words
+    that `in_english` puts in English (a dialect of English is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 

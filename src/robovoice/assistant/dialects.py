@@ -210,8 +210,12 @@ _LAST_YOU = re.compile(r"\b(and |then )?last(?:ly)?,? (?=you \w)", re.IGNORECASE
 _CLOSE_CALL = re.compile(_OPENS + r"close (?:the |this |that )?(?:video )?call\b", re.IGNORECASE)
 
 
+# Japanese's "yo" said after a clause: a particle, no word ("Kitchen first yo, after that hallway", text v107)
+_YO = re.compile(r"(?<=\w) yo(?=\s*(?:[,.!?;\u2026]|$))", re.IGNORECASE)
+
+
 def _object_first(text: str) -> str:
-    text = _CLOSE_CALL.sub(r"\1end the call", _LAST_YOU.sub(r"\1finally ", _I_SAID.sub(r"\1\2", text)))
+    text = _CLOSE_CALL.sub(r"\1end the call", _LAST_YOU.sub(r"\1finally ", _I_SAID.sub(r"\1\2", _YO.sub("", text))))
     said = _PLACE_GO.sub(lambda m: m.group(1) + "go to " + ("" if re.match(r"(?:the|my|your) ", m.group(2), re.I)
                                                              else "the ") + m.group(2).lower(), text)
     return _NAME_CALL.sub(lambda m: f"{m.group(1)}{m.group(3)} {m.group(2)}", said)

@@ -78,8 +78,32 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    out = _name_list(_said_to(_after_its_name(_past_why(out, text)), text), text)
+    out = _name_list(_said_to(_after_its_name(_past_why(_left_as_is(out), text)), text), text)
     return _either_or(_before_that_last(_done_too(_own_and(_not_that_but(out), text), text), text), text)
+
+
+# "leave it on", "leave it alone": as it is (text test v107: "Turn off projector... leave it on" switched it off)
+_LEAVE_IT = re.compile(r"^(?:(?:no|actually|oh|wait|sorry),? )*(?:just )?leave (?:it|that|them)"
+                       r" (on|off|alone|be|as (?:it is|they are))\W*$", re.IGNORECASE)
+
+
+_PAUSED = frozenset({"", "no", "wait", "actually", "oh", "sorry", "no wait", "hang on", "hmm"})
+
+
+def _left_as_is(clauses: list[Clause]) -> list[Clause]:
+    """"Turn off the projector. Actually, leave it on.": the switch said just before is taken back; not
+    "switch it on and leave it on" (the same way)."""
+    out = list(clauses)
+    for i in range(1, len(out)):
+        left = _LEAVE_IT.match(FILLER.sub("", out[i].text.strip()).strip())
+        j = next((j for j in range(i - 1, -1, -1) if FILLER.sub("", out[j].text).strip().lower() not in _PAUSED),
+                 None)
+        if left is None or j is None or out[j].kind is not ClauseKind.REQUEST:
+            continue
+        way = set(words(out[j].text)) & {"on", "off"}
+        if left.group(1).lower() not in ("on", "off") or (way and left.group(1).lower() not in way):
+            out[j] = Clause(out[j].text, ClauseKind.NEGATED)
+    return out
 
 
 _WHY_TO = re.compile(r"^(?:so as |in order )?to \w+", re.IGNORECASE)
@@ -121,7 +145,8 @@ def _after_its_name(clauses: list[Clause]) -> list[Clause]:
                 and named and not named & (_SOCIAL | IMPERATIVES) and not any(w.endswith("ly") for w in named) \
                 and not any(a_person(w) for w in said.split() if w.lower() not in ARTICLES) \
                 and words(said)[0] != "your" \
-                and not any(c.kind is ClauseKind.REQUEST and named <= set(words(c.text)) for c in out[:i]):
+                and not any(c.kind is ClauseKind.REQUEST and named <= set(words(c.text)) for c in out[:i]) \
+                and not (i + 1 < len(out) and "there" in words(out[i + 1].text)):  # "…, the kitchen, you go there"
             out[i] = Clause(out[i].text, ClauseKind.REQUEST)
     return out
 
