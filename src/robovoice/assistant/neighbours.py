@@ -122,6 +122,11 @@ def _past_why(clauses: list[Clause], text: str) -> list[Clause]:
     return out
 
 
+def _goes_there(after: list[Clause]) -> bool:
+    """The next clause is a request to go "there": "Robot, the kitchen, you go there" is one step."""
+    return bool(after) and after[0].kind is ClauseKind.REQUEST and "there" in words(after[0].text)
+
+
 # the robot called by name alone, as a clause of its own ("Yo robot, living room")
 _ROBOT_ALONE = re.compile(r"^(?:(?:yo|oi|ok|okay|right|now|so|hey|hi)\W+)?(?:robot|jarvis|robbie)\W*$", re.IGNORECASE)
 # what one says to the robot by name that names no thing: a greeting, thanks, praise, how it is
@@ -146,7 +151,7 @@ def _after_its_name(clauses: list[Clause]) -> list[Clause]:
                 and not any(a_person(w) for w in said.split() if w.lower() not in ARTICLES) \
                 and words(said)[0] != "your" \
                 and not any(c.kind is ClauseKind.REQUEST and named <= set(words(c.text)) for c in out[:i]) \
-                and not (i + 1 < len(out) and "there" in words(out[i + 1].text)):  # "…, the kitchen, you go there"
+                and not _goes_there(out[i + 1:]):
             out[i] = Clause(out[i].text, ClauseKind.REQUEST)
     return out
 
