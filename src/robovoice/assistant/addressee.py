@@ -57,6 +57,7 @@ _NOT_A_PERSON = frozenset({
 _STILL_ASKING = re.compile(r"^(?:then|and|too|as well|please|now|first|next|after|i mean|i meant)\b", re.IGNORECASE)
 # What is said to the person named ("not you", "don't you touch that", "I'll call you back"):
 # enough to tell a name from an exclamation the robot does not know.
+_LISTEN = re.compile(r"^(?:listen|listen up|look here|guess what|you know what)$", re.IGNORECASE)  # said to them
 _TO_THEM = re.compile(r"^(?:(?:not|don'?t|do not) )?you\b|^i(?:'m|'ll|'ve| am| will| was| have)\b", re.IGNORECASE)
 
 
@@ -103,7 +104,7 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
     last = name.split()[-1].lower()
     if not first or _STILL_ASKING.match(first) or STOP.search(called.group("rest")):
         return False  # (a spoken stop is always for the robot: it may be what keeps someone safe)
-    if _TO_THEM.match(first):
+    if _TO_THEM.match(first) or _LISTEN.match(first):  # "Ben, listen, …" (text test v108: during his call)
         return name[0].isupper() or last in _FAMILY
     return (last in _FAMILY or called.group("dear") is not None or (robot_called and name[0].isupper())) and (
         first.split()[0].lower() in IMPERATIVES or not fragment(first))

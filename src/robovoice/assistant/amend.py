@@ -190,6 +190,15 @@ def go_list(clauses: list[Clause], text: str) -> list[Clause]:
                 and not any(_GREETING.match(clauses[i].text.strip()) for i in said) \
                 and all(_then_before(clauses[i], text) for i in said[1:]):
             steps |= set(said)
+        # … or said first and called out, talk after it: "Kitchen, then hallway, then the front door! It's a
+        # treasure hunt!" (text test v109); not "Kitchen, then the bedroom, that's where I looked."
+        lead = said[:1] if said and said[0] in places else []
+        while lead and lead[-1] + 1 in places and _then_before(clauses[lead[-1] + 1], text):
+            lead.append(lead[-1] + 1)
+        if len(lead) > 1 and re.search(re.escape(clauses[lead[-1]].text.strip()) + r"\s*!", text) \
+                and not any(_GREETING.match(clauses[i].text.strip()) for i in lead):
+            steps |= set(lead)
+            places = {i for i in places if i <= lead[-1]}  # what is called out after the "!" is talk: "Race you!"
         while grown := {i for i in places - steps if i - 1 in steps or i + 1 in steps}:
             steps |= grown
     return [Clause(c.text, ClauseKind.REQUEST) if i in steps else

@@ -140,13 +140,19 @@ _YOU_NOW = re.compile(rf"^you (?:{ROBOT_ACTIONS}|move|roll|finish|stop|make|take
                       r"(?! (?:me|us|him|her|them|like|so|too|very|really|fast|slow|well|badly|mad|crazy)\b)"
                       r"(?!.*\b(?:always|never|usually|often|sometimes|every|each|normally|ever|still|whenever|"
                       r"all the time|yesterday|last)\b)", re.IGNORECASE)
+# "The doctor, Weber. You ring him." (text test v108): a call said to the robot, whole; not "you call him lazy"
+_YOU_CALL = re.compile(r"^you (?:call|ring|phone|video|dial) (?:him|her|them)(?: (?:for me|for us|please|now))*\W*$",
+                       re.IGNORECASE)
+# "… and then Dr Weber on video for Baba" (text test v108): a person put on the screen
+_ON_VIDEO = re.compile(r"^(?:(?i:dr\.?|doctor) )?[A-Z][a-z]+ on (?:the )?(?:video|screen|video call)\b"
+                       r"(?!.*\b(?:was|were|is|are|had|has|looked|looks|seemed|said|told|yesterday|last)\b)")
 # "I should like to know whether you are capable of taking yourself off …" asks what it can do (text test v65)
 _KNOW_IF_ABLE = re.compile(r"^i(?:'d| would| should)? (?:like|love|want|wish) to know (?:whether|if) (?:you|it)"
                            r"(?:(?:'re| are| would be| might be| will be)? (?:capable|able)\b"
                            r"| (?:can|could|know how to)\b)", re.IGNORECASE)
 # A word the shape of a request took for a verb, with a verb of telling after it: "first kitchen on the
 # farm had a wood stove" (audio test v57: it drove to the kitchen) is about the kitchen, no request
-_TOLD_OF = re.compile(r"\b(?:had|has|was|were|is|are|used to)\b")
+_TOLD_OF = re.compile(r"\b(?:had|has|was|were|is|are|used to|looked|seemed|sounded)\b")  # ("…, looked tired")
 # "kindly be going to the kitchen" (text test v49)
 _BE_GOING = re.compile(r"^be (?:going|coming|heading|moving|off) (?:to|into|in|through|over|back)\b", re.IGNORECASE)
 # a thing to be switched, said as what may happen to it: "the projector can go off now" (text v50)
@@ -225,6 +231,7 @@ def classify(clause: str) -> ClauseKind:
     if asks_ability(text) or _KNOW_IF_ABLE.match(lowered):
         return ClauseKind.ABILITY
     if _POLITE.search(lowered) or (IN_ORDER.search(said_first) and YOU_DO.match(lowered)) or _YOU_NOW.match(lowered) \
+            or _YOU_CALL.match(lowered) or _ON_VIDEO.match(text) \
             or _BE_GOING.match(lowered):
         return ClauseKind.REQUEST  # "could you …"; "first you go to bathroom": a step said to the robot
     said = words(lowered)

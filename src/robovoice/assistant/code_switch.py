@@ -18,6 +18,7 @@ from robovoice.assistant.french import from_french
 from robovoice.assistant.german_dutch import from_german_dutch
 from robovoice.assistant.hindi import from_hindi
 from robovoice.assistant.italian_greek import from_italian_greek
+from robovoice.assistant.persian import from_persian
 from robovoice.assistant.pidgin import from_pidgin
 from robovoice.assistant.portuguese import from_portuguese
 from robovoice.assistant.russian_turkish import from_russian_turkish
@@ -51,16 +52,16 @@ _COURTESY = rules((
 
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
-    Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese and Japanese put in English."""
+    Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian and Dari put in English."""
     text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
     text = from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text))))
-    return from_vietnamese_japanese(from_russian_turkish(text))
+    return from_persian(from_vietnamese_japanese(from_russian_turkish(text)))
 
 
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
-    Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese or Spanish words
-    that `in_english` puts in English (a dialect of English is not another language)."""
+    Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian or Spanish
+    words that `in_english` puts in English (a dialect of English is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 

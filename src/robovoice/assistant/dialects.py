@@ -214,8 +214,23 @@ _CLOSE_CALL = re.compile(_OPENS + r"close (?:the |this |that )?(?:video )?call\b
 _YO = re.compile(r"(?<=\w) yo(?=\s*(?:[,.!?;\u2026]|$))", re.IGNORECASE)
 
 
+# a child's dare and slang (text test v109): "Bet you can't get to the front door before I count to
+# ten!" asks for the drive; "my guy" names nobody; "Aight so first the living room". (Not "pull up": a
+# teenager's "come over" is Australian English's "stop", text test v33)
+_DARE = re.compile(r"(^|[.!?]\s+)(?:i )?bet(?:cha| you| ya) (?:can'?t|cannot|won'?t|couldn'?t)\s+(?=\w)", re.IGNORECASE)
+_MY_GUY = re.compile(r",?\s*\b(?:my guy|my dude|my man|bruh|fam)\b(?=\s*(?:[,.!?]|$))", re.IGNORECASE)
+_AIGHT_SO = re.compile(r"^(?:(?:aight|ight|aiight|a'ight|alright|all right|ok|okay|right)\b,?\s*)?so,?\s+(?=first\b)"
+                       r"|^(?:aight|ight|aiight|a'ight)\b[,.!]?\s*", re.IGNORECASE)
+
+
+def _childish(text: str) -> str:
+    text = _MY_GUY.sub("", _AIGHT_SO.sub("", text))
+    return _DARE.sub(r"\1", text)
+
+
 def _object_first(text: str) -> str:
-    text = _CLOSE_CALL.sub(r"\1end the call", _LAST_YOU.sub(r"\1finally ", _I_SAID.sub(r"\1\2", _YO.sub("", text))))
+    text = _I_SAID.sub(r"\1\2", _YO.sub("", _childish(text)))
+    text = _CLOSE_CALL.sub(r"\1end the call", _LAST_YOU.sub(r"\1finally ", text))
     said = _PLACE_GO.sub(lambda m: m.group(1) + "go to " + ("" if re.match(r"(?:the|my|your) ", m.group(2), re.I)
                                                              else "the ") + m.group(2).lower(), text)
     return _NAME_CALL.sub(lambda m: f"{m.group(1)}{m.group(3)} {m.group(2)}", said)

@@ -78,13 +78,24 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    out = _name_list(_said_to(_after_its_name(_past_why(_left_as_is(out), text)), text), text)
-    return _either_or(_before_that_last(_done_too(_own_and(_not_that_but(out), text), text), text), text)
+    out = _name_list(_said_to(_after_its_name(_past_why(_left_as_is(_counted(out)), text)), text), text)
+    return _either_or(_before_that_last(_before_that_both(_done_too(_own_and(_not_that_but(out), text), text), text),
+                                        text), text)
 
 
 # "leave it on", "leave it alone": as it is (text test v107: "Turn off projector... leave it on" switched it off)
 _LEAVE_IT = re.compile(r"^(?:(?:no|actually|oh|wait|sorry),? )*(?:just )?leave (?:it|that|them)"
                        r" (on|off|alone|be|as (?:it is|they are))\W*$", re.IGNORECASE)
+
+
+_NUMBERS = frozenset({"one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "go"})
+
+
+def _counted(clauses: list[Clause]) -> list[Clause]:
+    """"…before I count to ten! One, two...": a count is no step (text test v109); a bare "go" said
+    alone after it stays what it was (a "ready, steady, go" is read elsewhere)."""
+    return [Clause(c.text, ClauseKind.STATEMENT) if c.kind is ClauseKind.REQUEST and (said := words(c.text))
+            and set(said) <= _NUMBERS and set(said) != {"go"} else c for c in clauses]
 
 
 _PAUSED = frozenset({"", "no", "wait", "actually", "oh", "sorry", "no wait", "hang on", "hmm"})
@@ -275,6 +286,24 @@ def _before_that_last(clauses: list[Clause], text: str) -> list[Clause]:
             moved = clauses[i - 1]
             return [*clauses[:asked[0]], moved, *[c for k, c in enumerate(clauses) if k >= asked[0] and k != i - 1]]
     return clauses
+
+
+def _before_that_both(clauses: list[Clause], text: str) -> list[Clause]:
+    """"Call Ben. Before that - go to the living room and switch the projector on.": the request joined
+    by "and" to the one "before that" put first goes first with it (text test v108: the call came
+    between them)."""
+    out = list(clauses)
+    for b, clause in enumerate(out):
+        if not (_BEFORE_THAT.match(FILLER.sub("", clause.text.strip()).strip()) and b + 1 < len(out)
+                and out[b + 1].kind is ClauseKind.REQUEST):
+            continue
+        first = next((i for i in range(b) if out[i].kind is ClauseKind.REQUEST
+                      and _joined(out[i], out[b + 1], text, r"\s*,?\s*and(?: then)?\s+")), None)
+        if first is not None and text.find(out[first].text.strip()) > text.find(clause.text.strip()):
+            moved = out.pop(b + 1)
+            out.insert(first + 1, moved)
+        break
+    return out
 
 
 def _joined(before: Clause, clause: Clause, text: str, between: str) -> bool:
