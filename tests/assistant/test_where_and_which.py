@@ -51,3 +51,13 @@ def test_a_value_named_only_in_talk_is_not_the_one_asked(text: str, tool: str, a
 ])
 def test_the_value_asked_for_still_runs(text: str, tool: str, arguments: dict[str, object]) -> None:
     assert _reason(text, tool, arguments) is None
+
+
+@pytest.mark.parametrize(("text", "refused"), [
+    ("Keep the photo right next to the projector.", True),  # where it is, no switch (audio test v99, misheard)
+    ("Put my glasses on top of the projector, love.", True),
+    ("Switch on the projector behind the sofa.", False),
+    ("Put the projector on, it's next to the telly.", False),
+])
+def test_a_thing_named_as_where_something_is_is_not_switched(text: str, refused: bool) -> None:
+    assert (_reason(text, "set_projector_power", {"on": True}) is not None) is refused

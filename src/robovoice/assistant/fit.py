@@ -21,7 +21,7 @@ import re
 from collections.abc import Collection, Iterable, Mapping, Sequence
 from typing import Any
 
-from robovoice.assistant.lexicon import FILLER, words
+from robovoice.assistant.lexicon import BESIDE, FILLER, words
 from robovoice.assistant.reading import ClauseKind, Intent
 
 _SHORT_FORMS = {"dr": "doctor", "doc": "doctor", "mr": "mister", "mrs": "missus", "neighbor": "neighbour"}
@@ -127,9 +127,11 @@ _COURTESY = re.compile(r"^(?:(?:so|please|kindly|just|now|could|would|can|will|y
 
 
 def _request_stems(intent: Intent, said: Collection[str], kinds: Collection[ClauseKind] = (ClauseKind.REQUEST,),
-                   pooled: bool = True) -> list[list[str]]:
+                   pooled: bool = True, beside: bool = False) -> list[list[str]]:
     requests = [c for c in intent.clauses if c.kind in kinds]
-    clauses = [_stems(_COURTESY.sub("", FILLER.sub("", c.text.strip()))) for c in requests]  # "ok wrap up …"
+    # (`beside`, for a call with no value of its own: "keep the photo next to the projector" is no switch)
+    clauses = [_stems(_COURTESY.sub("", FILLER.sub("", BESIDE.sub("", c.text.strip()) if beside else c.text.strip())))
+               for c in requests]  # "ok wrap up …"
     # (an ability question's "it" is not looked up: "If Ben rings, could you answer it?" is
     # not a question about ringing him, and the robot's "yes" must be to what it names)
     if pooled and ClauseKind.REQUEST in kinds and any(refers_back(c.text) for c in requests):
@@ -159,13 +161,13 @@ def fits(intent: Intent, name: str, declared: Sequence[str], arguments: Mapping[
     phrases = vocabulary(name, declared, arguments) + [[stem(w)] for w in aliases]
     others = [_stems(phrase) for phrase in itertools.chain.from_iterable(rivals)]
     aimed = {stem(w) for w in elsewhere} - {stem(w) for w in subject_words(name)}
-    if any(isinstance(value, str) for value in arguments.values()):
+    if aimed_at := any(isinstance(value, str) for value in arguments.values()):
         aimed = set()  # a place or a person says what it acts on
     acts = vocabulary(name, declared, {})  # its own words: a message for somebody fits only through them
     # what a request may open with for it: its declared words and values, not a word of its name
     # alone ("Call the plumber" opens with the call's verb, not end_video_call's noun)
     openings = phrases[len(subject_words(name)):]
-    for clause in _request_stems(intent, said, kinds, pooled):
+    for clause in _request_stems(intent, said, kinds, pooled, beside=not aimed_at):
         own_only = _message(clause) or _handles(clause)
         if not any(_says_for_it(clause, phrase, aimed) for phrase in (acts if own_only else phrases)):
             continue

@@ -125,6 +125,10 @@ RELATIONS = frozenset({"son", "daughter", "neighbour", "neighbor", "gp", "sister
                        "nurse", "niece", "nephew", "aunt", "auntie", "uncle", "cousin"})
 
 # the little words before a place or a person ("the kitchen", "to my son"): no part of what is named
+# a thing named as where something is, not what is acted on: "keep the photo right next to the projector"
+# (audio test v99, misheard: it switched the projector on; `fit.fits`)
+BESIDE = re.compile(r"\b(?:right |just )?(?:next to|beside|behind|near|under(?:neath)?|in front of|on top of|close to)"
+                    r" (?:the|my|your|that|this|our) \w+", re.IGNORECASE)
 ARTICLES = frozenset({"the", "a", "my", "your", "to"})
 NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
 

@@ -21,6 +21,7 @@ STOP_PHRASES: Final = frozenset({
     # idioms people use for the same (text test v25: "Whoa whoa, hold your horses!" during a drive)
     "hold your horses", "hang on", "stand still", "stay still", "stop where you are", "hold still", "keep still",
     "hold up", "quit rolling", "quit moving", "quit driving", "stop rolling",  # Southern US (text test v71)
+    "hold",  # said alone ("Hold, hold, …"), and how Whisper tiny.en hears a shouted "Halt!" (audio test v99)
 })  # fmt: skip
 # With the robot's own voice over it, Whisper tiny.en garbles the little word of "stop the
 # robot" ("Stop my robot!", "Stop one robot!", "Stop when robot!", "Stop one of the robot!"):
