@@ -114,10 +114,13 @@ def normalise(text: str) -> str:
 
 
 def find_place(text: str) -> Place | None:
-    """The place `text` names, or None. Matches names, aliases and their spaceless forms."""
+    """The place `text` names, or None. Matches names, aliases and their spaceless forms, and one
+    whose room is said as somebody's ("Abbu's bedroom", text test v110: the home has one bedroom)."""
     key = normalise(text)
     if not key:
         return None
+    if (whose := re.match(r"^[a-z]+ s (.+)$", key)) is not None and (found := find_place(whose.group(1))):
+        return found
     for candidate in (key, key.replace(" ", "")):
         for name, place in _BY_NAME.items():
             if candidate in (name, name.replace(" ", "")):
