@@ -192,7 +192,7 @@ _OPENS = r"(^|[.!?,;:\u2026\u2014\u2013-]\s*|\b(?:and|then|but|so|now|first)\s+)
 _NOT_A_PLACE = (r"(?!(?i:i|we|you|they|he|she|it|let's|here|there|off|back|home|away|on|out|up|down|in|over|ready|set"
                 r"|steady|get|who|where|what|then|now|and|so|to|must|should|can|will|please|just|oh|go|let|good|bad"
                 r"|close|last|final|tough|great|nice|phone|video|ok|okay|yes|yeah|yep|right|alright|come|lets|ah|hey|hi|all"
-                r"|everyone|everybody|nobody|someone|somebody|the|a|an|this|that|these|those|his|her|our|their|what|which|whose"
+                r"|everyone|everybody|nobody|someone|somebody|the|a|an|this|that|these|those|his|her|our|their|which|whose"
                 r"|any|every|each|another|long|short|quick|missed|conference|group|wake|next|first|brief|same|big)\b)")
 _PLACE_GO = re.compile(_OPENS + r"((?:the |my |your )?" + _NOT_A_PLACE + r"[a-z]+(?: (?:room|door|dock))?) (?:you )?go"
                        r"(?= (?:instead|first|now|please|quickly|then|too)\b|\s*(?:[,.!?;:\u2026\u2014\u2013-]|$))",

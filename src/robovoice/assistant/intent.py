@@ -82,6 +82,7 @@ from robovoice.assistant.order_words import (
     URGE,
     before_you,
     only_paused,
+    paused,
     same_step,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
@@ -316,8 +317,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
         clauses.append(Clause(part, kind))
     for i in range(1, len(clauses)):  # "…, you can go to the bathroom, but not before"; "ring Clara. Not at the moment"
         # the request before it, past a pause: "…, hang on, not yet"
-        j = next(j for j in range(i - 1, -1, -1)  # (or a "hmm": text test v105)
-                 if not j or not (only_paused([clauses[j].text]) or not FILLER.sub("", clauses[j].text).strip()))
+        j = next(j for j in range(i - 1, -1, -1) if not j or not paused(clauses[j].text))  # (a "hmm": text v105)
         if clauses[i].kind is ClauseKind.NEGATED and NOT_BEFORE.match(clauses[i].text.strip()) \
                 and clauses[j].kind is ClauseKind.REQUEST and not STOP.search(clauses[j].text):
             clauses[j] = Clause(clauses[j].text, ClauseKind.NEGATED)

@@ -31,6 +31,7 @@ from robovoice.assistant.lexicon import (
     fragment,
     words,
 )
+from robovoice.assistant.order_words import paused
 from robovoice.assistant.reading import Clause, ClauseKind
 
 # a habit: advice or a routine, not a request for now (a statement that names one stays talk)
@@ -98,17 +99,13 @@ def _counted(clauses: list[Clause]) -> list[Clause]:
             and set(said) <= _NUMBERS and set(said) != {"go"} else c for c in clauses]
 
 
-_PAUSED = frozenset({"", "no", "wait", "actually", "oh", "sorry", "no wait", "hang on", "hmm"})
-
-
 def _left_as_is(clauses: list[Clause]) -> list[Clause]:
     """"Turn off the projector. Actually, leave it on.": the switch said just before is taken back; not
     "switch it on and leave it on" (the same way)."""
     out = list(clauses)
     for i in range(1, len(out)):
         left = _LEAVE_IT.match(FILLER.sub("", out[i].text.strip()).strip())
-        j = next((j for j in range(i - 1, -1, -1) if FILLER.sub("", out[j].text).strip().lower() not in _PAUSED),
-                 None)
+        j = next((j for j in range(i - 1, -1, -1) if not paused(out[j].text)), None)
         if left is None or j is None or out[j].kind is not ClauseKind.REQUEST:
             continue
         way = set(words(out[j].text)) & {"on", "off"}

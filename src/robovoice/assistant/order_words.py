@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from robovoice.assistant.lexicon import IMPERATIVES, words
+from robovoice.assistant.lexicon import FILLER, IMPERATIVES, words
 
 # "…, and once you've got her, …": the step before done, then what follows
 HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
@@ -82,3 +82,9 @@ def only_paused(texts: Iterable[str]) -> bool:
     """Whether each of `texts` is only a "no" or a "wait" ("oh wait, no"): a request taken back
     that way is kept when the next says what to do before it."""
     return all(_BARE_NO.match(re.sub(r"[^\w']+", " ", text).strip()) for text in texts)
+
+
+def paused(text: str) -> bool:
+    """Whether `text` is only a pause between a request and what is said of it: a bare "no" or "wait"
+    (`only_paused`), or nothing but fillers ("hmm", "actually", "oh")."""
+    return only_paused([text]) or not FILLER.sub("", text).strip()
