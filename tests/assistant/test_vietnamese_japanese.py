@@ -27,6 +27,9 @@ def test_vietnamese_and_japanese_are_put_in_english(said: str, english: str) -> 
     ("Switch off the projector. Actually, leave it on.", ()),
     ("Turn the projector off... no wait, leave it alone.", ()),
     ("Leave it on, and go to the hallway.", ("go to the hallway",)),
+    # the same way: kept, not taken back ("on" names nothing a "leave" could take back)
+    ("Switch the projector on and leave it on.", ("Switch the projector on",)),
+    ("Put the projector on. Leave it on please.", ("Put the projector on",)),
 ])
 def test_they_are_read_as_english_says_it(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps

@@ -130,7 +130,7 @@ RELATIONS = frozenset({"son", "daughter", "neighbour", "neighbor", "gp", "sister
 BESIDE = re.compile(r"\b(?:right |just )?(?:next to|beside|behind|near|under(?:neath)?|in front of|on top of|close to)"
                     r" (?:the|my|your|that|this|our) \w+", re.IGNORECASE)
 ARTICLES = frozenset({"the", "a", "my", "your", "to"})
-NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "for", "now"})
+NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "on", "for", "now", "please"})
 
 _IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
               "taken": "take", "driven": "drive", "done": "do", "found": "find", "told": "tell", "shown": "show",
