@@ -17,6 +17,7 @@ from robovoice.assistant.dialects import as_standard, rewrite, rules
 from robovoice.assistant.french import from_french
 from robovoice.assistant.german_dutch import from_german_dutch
 from robovoice.assistant.hindi import from_hindi
+from robovoice.assistant.indonesian_thai import from_indonesian_thai
 from robovoice.assistant.italian_greek import from_italian_greek
 from robovoice.assistant.persian import from_persian
 from robovoice.assistant.pidgin import from_pidgin
@@ -25,6 +26,7 @@ from robovoice.assistant.russian_turkish import from_russian_turkish
 from robovoice.assistant.spanish import from_spanish, said_in_spanish
 from robovoice.assistant.swahili import from_swahili
 from robovoice.assistant.tagalog import from_tagalog
+from robovoice.assistant.topic_first import from_topic_first
 from robovoice.assistant.vietnamese_japanese import from_vietnamese_japanese
 
 # Hindi's "switch off" and "switch on", said after the thing in Indian English (text test v68)
@@ -52,21 +54,24 @@ _COURTESY = rules((
 
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
-    Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian and Dari put in English."""
+    Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Dari, Indonesian, Malay
+    and Thai put in English."""
     text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
     text = from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text))))
-    return from_persian(from_vietnamese_japanese(from_russian_turkish(text)))
+    return from_indonesian_thai(from_persian(from_vietnamese_japanese(from_russian_turkish(text))))
 
 
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
-    Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian or Spanish
-    words that `in_english` puts in English (a dialect of English is not another language)."""
+    Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Indonesian,
+    Malay, Thai or Spanish words that `in_english` puts in English (a dialect of English is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 
 def in_english(text: str) -> str:
     """`text` with the requests, order words and rooms said in Tagalog, Hindi or Spanish put in English,
-    and a dialect's turns said as standard English says them (`dialects.as_standard`)."""
+    a thing said before what to do with it in English's order (`topic_first`), and a dialect's turns
+    said as standard English says them (`dialects.as_standard`)."""
     text = rewrite(_other_languages(text), _COURTESY)
-    return from_spanish(as_standard(_HINDI_OFF.sub("off", _HINDI_ON.sub("on", text))))  # "Light band karo": off
+    text = from_topic_first(_HINDI_OFF.sub("off", _HINDI_ON.sub("on", text)))  # "Light band karo": off
+    return from_spanish(as_standard(text))

@@ -14,6 +14,11 @@ from collections.abc import Iterable
 Rules = tuple[tuple[re.Pattern[str], str], ...]
 
 
+# the home's rooms, as a pattern: named with no article, as Slavic and signing speakers say them
+# ("once you are in hallway", "Hallway, not living room": text tests v111, v112)
+ROOM = r"(?:kitchen|living room|lounge|bedroom|bathroom|hallway|hall|front door|charging dock)"
+
+
 def rules(pairs: Iterable[tuple[str, str]]) -> Rules:
     """Each (pattern, English) pair compiled, case-insensitive: the table a language's or a
     dialect's turns are written in (here, and in `tagalog` and `code_switch`)."""
@@ -172,6 +177,8 @@ _YORKSHIRE = rules((
 
 def _scots(text: str) -> str:
     def word(m: re.Match[str]) -> str:
+        if m.group(1).lower() == "tak" and m.string[m.end():].lstrip().startswith("?"):
+            return m.group(0)  # "…, tak?": Polish and Czech asking agreement, no Scots "take" (text test v111)
         english = _SCOTS_WORDS[m.group(1).lower()]
         return english.capitalize() if m.group(1)[0].isupper() else english
 
@@ -193,7 +200,8 @@ _NOT_A_PLACE = (r"(?!(?i:i|we|you|they|he|she|it|let's|here|there|off|back|home|
                 r"|steady|get|who|where|what|then|now|and|so|to|must|should|can|will|please|just|oh|go|let|good|bad"
                 r"|close|last|final|tough|great|nice|phone|video|ok|okay|yes|yeah|yep|right|alright|come|lets|ah|hey|hi|all"
                 r"|everyone|everybody|nobody|someone|somebody|the|a|an|this|that|these|those|his|her|our|their|which|whose"
-                r"|any|every|each|another|long|short|quick|missed|conference|group|wake|next|first|brief|same|big)\b)")
+                r"|any|every|each|another|long|short|quick|missed|conference|group|wake|next|first|brief|same|big"
+                r"|finish|end|stop|cancel|quit)\b)")  # "Finish call." ends it (text test v112)
 _PLACE_GO = re.compile(_OPENS + r"((?:the |my |your )?" + _NOT_A_PLACE + r"[a-z]+(?: (?:room|door|dock))?) (?:you )?go"
                        r"(?= (?:instead|first|now|please|quickly|then|too)\b|\s*(?:[,.!?;:\u2026\u2014\u2013-]|$))",
                        re.IGNORECASE)
