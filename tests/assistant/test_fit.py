@@ -481,3 +481,25 @@ def test_a_word_searched_for_is_the_declared_thing(text: str) -> None:
     # "picture thing" is declared: "picture box", "picture gadget" are the same thing, said while searching for the word
     assert refusal(read_request(text), SPECS["set_projector_power"], {"on": True}, (), VOICE,
                    tools=list(SPECS.values())) is None
+
+
+def test_a_place_said_alone_names_the_drive_when_another_call_is_refused() -> None:
+    """Text test v111: "Front door, quickly, somebody is ringing!" and the model rang Anna; told
+    only that nobody asked for the call, it did nothing. The refusal names the drive, which the
+    place alone asks for."""
+    asked = read_request("Bedroom, quick, the phone's ringing!")
+    body = refusal(asked, SPECS["start_video_call"], {"contact": "Anna"}, (), VOICE, tools=list(SPECS.values()))
+    assert body is not None and body["details"]["reason"] == OTHER and body["details"]["fits"] == ["navigate_to"]
+    assert "fits navigate_to" in body["hint"]
+
+
+def _runs(text: str, tool: str, arguments: dict[str, object]) -> bool:
+    return refusal(read_request(text), SPECS[tool], arguments, (), VOICE, tools=list(SPECS.values())) is None
+
+
+def test_a_name_said_last_is_no_call_and_one_call_names_its_person() -> None:
+    assert _runs("Go to the kitchen, Ben.", "navigate_to", {"target": "kitchen"})
+    assert not _runs("Go to the kitchen, Ben.", "start_video_call", {"contact": "Ben"})
+    assert _runs("Call Clara, Ben.", "start_video_call", {"contact": "Clara"})
+    assert not _runs("Call Clara, Ben.", "start_video_call", {"contact": "Ben"})  # (audio test v102)
+    assert _runs("Ring my son", "start_video_call", {"contact": "Ben"})

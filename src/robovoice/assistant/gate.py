@@ -211,6 +211,16 @@ def _fits(intent: Intent, name: str, arguments: Mapping[str, Any], said: Collect
                 glossed, elsewhere, kinds, pooled=pooled)
 
 
+def _asked_by_value(intent: Intent, tools: Sequence[ToolSpec], declared: Mapping[str, Sequence[str]], but: str,
+                    said: Collection[str]) -> list[str]:
+    """The actions, other than `but`, that a request asks for by one of their listed values alone
+    ("Front door, quickly, somebody is ringing!": the drive, though no word of it was said; the
+    model rang Anna, and told only that nobody asked for that, it did nothing: text test v111)."""
+    return [t.name for t in tools if t.name != but and not t.read_only and any(
+        _fits(intent, t.name, {arg: v}, said, declared, ()) for arg, values in listed(t.parameters).items()
+        for v in values)]
+
+
 def _listed_values(spec: ToolSpec, arguments: Mapping[str, Any]) -> dict[str, str]:
     """The call's arguments whose values the tool lists (a place, a contact)."""
     choices = listed(spec.parameters)
@@ -233,13 +243,13 @@ def _names_another(spec: ToolSpec, arg: str, value: str, heard: Sequence[str]) -
 
 def _another_asked(intent: Intent, spec: ToolSpec, arguments: Mapping[str, Any], said: Collection[str],
                    declared: Mapping[str, Sequence[str]]) -> bool:
-    """Of several requests, those this call's words fit name another of its listed values and
+    """Of the requests, those this call's words fit name another of its listed values and
     not its own: "Hang up with Anna, then call Doctor Weber" asks the call for Dr. Weber; Anna is
     named only in the request to end the call (text test v95: the model rang Anna too). (Not for a
     drive: "nip to the kitchen and then come back to the bathroom when I shout" asks both.)"""
     requests = [c for c in intent.clauses if c.kind is ClauseKind.REQUEST]
     values = _listed_values(spec, arguments)
-    if len(requests) < 2 or not values:
+    if not requests or not values:  # (one request too: "Call Clara, Ben." rang Ben, audio test v102)
         return False
     fitting = _fitting_words(intent, spec, arguments, said, declared, requests)
     return bool(fitting) and any(
@@ -338,7 +348,8 @@ def refusal(
     answer = _only_talk(intent, why) or (why == ClauseKind.ABILITY.value and spec is not None
                                              and _about_this(intent, spec, arguments, said, declared))
     log.info("refused %s%s: the user did not ask for it (%s)", name, dict(arguments), why)
-    others = sorted({*fitting_tools(intent, declared, name), *([owner] if owner else [])}) if why == OTHER else []
+    others = sorted({*(fitting_tools(intent, declared, name) or _asked_by_value(intent, tools, declared, name, said)),
+                     *([owner] if owner else [])}) if why == OTHER else []
     hint = _HINTS[why] + (f" What they asked for fits {' or '.join(others)}." if others else "")
     # the values the person can choose from, for the question `question` asks
     choices = [v for arg, values in listed(spec.parameters).items() if arg in arguments
