@@ -473,6 +473,11 @@ def test_once_that_is_done_starts_the_next_step() -> None:
     assert read_request("Ring the plumber, then as soon as that is over go back to bed.").steps == (
         "Ring the plumber", "go back to bed")
     assert read_request("Once that's done, I will have a cup of tea.").steps == ()
+    # "after you've done that": the step before, done (not a step "do that" put before it)
+    assert read_request("Ring the plumber, and after you've done that go to the garage.").steps == (
+        "Ring the plumber", "go to the garage")
+    assert read_request("Head to the garage. When you have finished it, come back here.").steps == (
+        "Head to the garage", "come back here")
 
 
 def test_a_goodbye_for_the_person_on_the_call_is_no_step() -> None:
@@ -1278,6 +1283,7 @@ def test_passed_on_not_to_cut_i_request_a_new_plan_once_you_reach_hindi_switches
     ("Before ringing the doctor, go to the bedroom.", ("go to the bedroom", "ring the doctor")),  # (audio v59)
     ("before going to bed I read a book", ()),  # somebody else doing it
     ("Before charging, switch the projector off.", ("switch the projector off",)),  # no thing it is done to
+    ("After you've been to the garage come back into the lounge.", ("go to the garage", "come back into the lounge")),
 ])
 def test_an_order_words_clause_run_into_the_command_without_a_comma(text: str, steps: tuple[str, ...]) -> None:
     """Audio test v58: "before you call Clara switch on the projector." (heard with no comma) was
@@ -1476,4 +1482,15 @@ def test_english_as_a_second_language(text: str, steps: tuple[str, ...]) -> None
     ("Is the projector close to the wall?", ("Is the projector close to the wall",)),  # a question, no switch
 ])
 def test_mandarin_and_cantonese_courtesy(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    ("Turn the project or off and ring Clara.", ("Turn the projector off", "ring Clara")),
+    ("Switch on the project or head to the lounge.", ("Switch on the projector", "head to the lounge")),
+    ("Is it a project or a hobby?", ("Is it a project or a hobby",)),  # no projector misheard
+])
+def test_the_project_or_is_the_projector_misheard(text: str, steps: tuple[str, ...]) -> None:
+    """Audio test v104: "Switch off the project or go to the bathroom, then call Anna." was read as
+    one thing or the other, and the drive was never made."""
     assert read_request(text).steps == steps

@@ -166,6 +166,11 @@ _TO_PLACE = re.compile(r"^(?=.*\b(?:first|next|then|now|please|last|again|from t
 # a place said alone after "now" (a filler before others): "Now the bathroom, and after, the bedroom" (text v102)
 _NOW_PLACE = re.compile(r"^now,? (?:(?:on )?to |into )?(?:the|your) (?:kitchen|living room|lounge|bedroom|bathroom"
                         r"|toilet|loo|hallway|hall|front door|door|dock|charger)$", re.IGNORECASE)  # not "now the news"
+# home for its charge, said alone: "…, then home to charge", "then home for a charge" (text test v111)
+_HOME_TO_CHARGE = re.compile(r"^(?:(?:straight|right|back) )?home "
+                             r"(?:to (?:re)?charge|for (?:a |your )?(?:re)?charg(?:e|ing))"
+                             r"(?:,? (?:please|now|then))?\W*$",
+                             re.IGNORECASE)
 # a helm order: "set a course for the kitchen", "shape a course for the living room" (audio test v39)
 _COURSE = re.compile(r"^(?:set|shape|plot|lay|steer) (?:a |your |our )?course (?:for|to)\b", re.IGNORECASE)
 # "Off with the projector, please." (text test v37)
@@ -250,7 +255,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text) \
             or _COURSE.match(text) or _CAN_GO.match(text) or _TO_PLACE.match(text) or _NOW_PLACE.match(clause.strip()) \
-            or _SWITCHED.match(text):
+            or _SWITCHED.match(text) or _HOME_TO_CHARGE.match(text):
         return ClauseKind.REQUEST
     if first in _WH and len(said) > 2 and said[1] in _TELLS:
         return ClauseKind.STATEMENT  # "…, where I think I left my hymn book": a place described, no question

@@ -24,12 +24,14 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)
 # "…, and once that's done take yourself off for a charge": the step before, done, then this one
+# (… "and after you've done that go to …": not a step "do that" put first)
 _DONE_THEN = re.compile(r"^(?:once|when|as soon as|after) (?:(?:that|this|it)(?:'s| is| has)(?: been)? "
                         # "… switch on the projector, and once it's warmed up call Anna" (text test v55)
                         r"(?:done|finished|over|sorted|warmed up|ready|on|running|up|going)"
                         # "…, and when you're done with that get yourself back on the charger" (text test v58)
                         r"|you(?:'re| are|'ve| have)? (?:all )?(?:done|finished)"
-                        r"(?: with (?:that|this|it|them|her|him)| there| here| in there)?)"
+                        r"(?: with (?:that|this|it|them|her|him)| (?:that|it)(?!\s+(?:call|with)\b)| there| here"
+                        r"| in there)?)"
                         # (said alone before a comma: "…, and when that's done, make your way …", text test v63)
                         r"(?:\s+(?!(?:with|that|this|it|them|there|here|in)\b)|$)", re.IGNORECASE)
 # the robot named when the speaker passes a request on: "tell it to …", "ask the machine not to …"
@@ -40,7 +42,10 @@ _RELAYED = re.compile(r"^(?:(?!(?:i|we|you|it|nobody|no one|did|does|do|has|if|w
                       r"(?:asked|told|wants|wanted|would like|'d like) me to "
                       r"(?:(?:get|ask|tell) you to|have you)"
                       # … or by someone else in the room: "tell it to go to the bedroom" (text test v61)
-                      rf"|(?:(?:please|kindly|just|go on) )?{_TELL_IT} to)"
+                      rf"|(?:(?:please|kindly|just|go on) )?{_TELL_IT} to"
+                      # … or what they say to do now: "Nenek says hang up the call now" (text test v113)
+                      r"|(?!(?:i|it|that|this)\b)(?:\w+ )?\w+ says(?=\s+(?:" + "|".join(sorted(IMPERATIVES))
+                      + r")\b[^.!?]*\b(?:now|please|right away|straight away)\b))"
                       r"\s+(?=\w)",
                       re.IGNORECASE)
 # "tell the machine not to go in the kitchen": the same, not wanted (text test v68)
@@ -90,9 +95,14 @@ _CALL_COMMA = re.compile(r"(?<!\bthe )(?<!\ba )(?<!\bvideo )\b((?i:call|ring|pho
 
 # "before you go charge can you switch the projector off": the comma speech-to-text (or a
 # hurried typist) left out between the step said first and the request (text test v39)
-# … or before a command ("before you call Clara switch on the projector", audio test v58)
-_ORDER_THEN_ASK = re.compile(r"^((?:before|after|once) you (?:\w+ ){0,6}?\w+)\s+(?=(?:can|could|would|will) you \w"
+# … or before a command ("before you call Clara switch on the projector", audio test v58), also after
+# "you've" ("after you've been to the kitchen come back …")
+_ORDER_THEN_ASK = re.compile(r"^(?!\w+ you've (?:done|finished)\b)"  # "after you've done that …": `_DONE_THEN`
+                             r"((?:before|after|once) you(?:'ve)? (?:\w+ ){0,6}?\w+)\s+"
+                             r"(?=(?:can|could|would|will) you \w"
                              r"|(?<!^before you )(?<!^after you )(?<!^once you )"
+                             # (not a noun: "after you finish this call with Anna, …")
+                             r"(?<!\bthis )(?<!\bthe )(?<!\bthat )(?<!\ba )(?<!\bmy )(?<!\byour )(?<!\bvideo )"
                              r"(?:switch|turn|put|call|ring|phone|give|go|head|come|drive) "
                              r"[a-z]\w*\b)", re.IGNORECASE)  # and any word after it
 

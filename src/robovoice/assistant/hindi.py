@@ -20,7 +20,7 @@ _MARKER = re.compile(r"\b(?:karo|kardo|kar\s+(?:do|de|dein|dijiye|dena|lo)|karna
                      r"chalao|chala\s+(?:do|de|dein)|chalo|milao|mila\s+(?:do|de|dein)|lagao|laga\s+(?:do|de|dein)|"
                      r"bulao|ruko|ruk\s+ja\w*|pehle|pahle|pehlan|phir|uske|iske|nahin|nahi|zara|kya|hai|"
                      r"hain|aao|aaja|aa\s+ja|wapas|vapas|abhi|khatam|kaat\w*|bujha\w*|chalu|puttar|"
-                     r"wahan|udhar|idhar|sakte|sakti|sakta|shaam|chal|othon|uthon|jaake|dekho|karne|tashreef|"
+                     r"wahan|udhar|idhar|sakte|sakti|sakta|sakda|sakdi|sakde|shaam|chal|othon|uthon|jaake|dekho|karne|tashreef|"
                      r"farmaiye|mudiye|rukiye|jaldi|milaiye|lagaiye|bulaiye|chalaiye|dijiye)\b",
                      re.IGNORECASE)
 # an infinitive said with "hai" is a need ("mujhe bathroom jaana hai": I have to go), a "raha" an
@@ -65,7 +65,7 @@ _VERB_WORD = r"(?:\w+(?:o|na|iye|ein|en|ao)|kar|ja|jaa|aa|chal|ruk|la)\b"
 
 _RULES = rules((
     # "… sakte ho?": can you …? (the verb's stem, said as an order after "can you")
-    (r"(^|[.!?,;]\s*)([^.!?,;]*?)\b(\w+)\s+(?:sakte|sakti|sakta|sakoge|sakogi|sakenge)\b"
+    (r"(^|[.!?,;]\s*)([^.!?,;]*?)\b(\w+)\s+(?:sakte|sakti|sakta|sakoge|sakogi|sakenge|sakda|sakdi|sakde)\b"
      r"(?:\s+(?:ho|hain|hai|hoon|hun))?(?:\s+(?:tum|aap))?(?:\s+kya)?", r"\1can you \2\3o"),
     (r"\b(?:kya|kyaa)\s+(?:tum|aap)\b", ""), (r"(^|[.!?,;]\s*)kya\b", r"\1"),
     # "A karne se pehle, B": before you A, B; "A karne ke baad, B": after you A, B (the verb's stem and "o")

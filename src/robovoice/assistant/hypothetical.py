@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import re
 
+from robovoice.assistant.dialects import ROOM
 from robovoice.assistant.lexicon import FILLER, IMPERATIVES, NOT_GENERIC, words
 
 _ABILITY = re.compile(
@@ -24,7 +25,8 @@ _ABILITY = re.compile(
 )
 # "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").
 _CAN_GENERIC = re.compile(
-    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|stuff|video calls|calls|projectors)\b",
+    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|stuff|video calls|calls|projectors)\b"
+    r"|^(?:can|could) you \w+ (?:films?|movies?|videos|pictures|photos|music)\b",  # "… show film?" (text test v114)
     re.IGNORECASE,
 )
 # … unless it names whom or where: "could you make a video call to Ben?", "could you take a
@@ -116,9 +118,9 @@ SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| hav
 # "…, but only once you're in the kitchen" (text test v93); "… after you reach Abbu in the bedroom" (text test v89)
 ONCE_THERE = re.compile(r"^(?:only )?(?:once|as soon as) you(?:(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (v55)
                         r"(?:in|at|by|inside|into)| (?:reach|get to|arrive at|make it to)) "  # (text test v68)
-                        r"((?:the|my|your) \w+(?: \w+)?)$"
+                        r"((?:the|my|your) \w+(?: \w+)?|" + ROOM + r")$"
                         r"|^(?:only )?(?:after|when) you (?:reach|get to|arrive at|make it to)(?: \w+ (?:in|at))?"
-                        r" ((?:the|my|your) \w+(?: \w+)?)$",
+                        r" ((?:the|my|your) \w+(?: \w+)?|" + ROOM + r")$",
                         re.IGNORECASE)  # (text test v71: "… after you get to the bedroom")
 ARRIVED = re.compile(r"\s+((?:once|when|as soon as) you(?:'re| are) (?:in|at|by|inside) (?:the|my|your) \w+(?: \w+)?"
                      r"|(?:once|when|after|as soon as) you(?:'ve| have) (?:got(?:ten)?|made it|reached|arrived"

@@ -75,7 +75,6 @@ from robovoice.assistant.order_words import (
     FIRST,
     FIRST_ALONE,
     HIM_THEN,
-    NOT_BEFORE,
     ORDERED_FRAGMENT,
     PAUSE,
     THAT_FIRST,
@@ -83,6 +82,7 @@ from robovoice.assistant.order_words import (
     before_you,
     only_paused,
     paused,
+    puts_off,
     same_step,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
@@ -318,7 +318,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     for i in range(1, len(clauses)):  # "…, you can go to the bathroom, but not before"; "ring Clara. Not at the moment"
         # the request before it, past a pause: "…, hang on, not yet"
         j = next(j for j in range(i - 1, -1, -1) if not j or not paused(clauses[j].text))  # (a "hmm": text v105)
-        if clauses[i].kind is ClauseKind.NEGATED and NOT_BEFORE.match(clauses[i].text.strip()) \
+        if clauses[i].kind is ClauseKind.NEGATED and puts_off(clauses[i].text, [c.text for c in clauses[i + 1:]]) \
                 and clauses[j].kind is ClauseKind.REQUEST and not STOP.search(clauses[j].text):
             clauses[j] = Clause(clauses[j].text, ClauseKind.NEGATED)
     if condition and conditioned is not None:  # a condition after the request, nothing after it to apply to:

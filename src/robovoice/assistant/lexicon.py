@@ -26,6 +26,8 @@ FILLER = re.compile(
     r"bro|bruh|dude|yaar|arre|arey|accha|achha|acha|"  # young people's and Hinglish openers (text test v68)
     r"ay|oy vey|oy|oye|nu|hoy|oi|"  # Spanish, Yiddish (text test v69) and Tagalog ones (text test v76)
     r"aiyah|aiya|aiyoh|aiyo|alamak|walao|wah|"  # Singlish ones (text test v70)
+    r"eh|ehh|"  # (text test v113: "Call Ben. Eh, sorry, …" made a step of the "Eh")
+    r"bismillah|alhamdulillah|mashallah|masha'?allah|subhanallah|wallahi|"  # (text test v114: a step of "Bismillah")
     r"aye|och|ach|"  # Scots ones (text test v74)
     r"(?:i'?ll )?tell you what|"
     # "um, chuck the projector on" heard "I'm Chuck the projector on" (audio test v83): no "I'm" takes a bare verb
@@ -38,6 +40,7 @@ _HASTE = (r"(?:and )?(?:be )?(?:quick|sharp|snappy)(?: about it)?|(?:and )?(?:sh
           r"quick smart|quick,? quick|"  # (text test v55; v106)
           r"(?:real|really|super) quick(?: like)?|asap|right away|straight away|at once|"  # (text test v63)
           r"(?:and )?step on it|on the double|(?:as )?quick as (?:you can|you like)|"
+          r"(?:go )?fast(?: fast)?|"  # (dev valueonly-1)
           # … and how to go: "bathroom, please, quietly" (audio test v33)
           r"(?:please,? )?(?:and )?(?:nice and )?(?:quiet(?:ly)?|slow(?:ly)?|careful(?:ly)?|gently|soft(?:ly)?|quickly)"
           r"(?:,? (?:now|please))?")
@@ -130,7 +133,8 @@ RELATIONS = frozenset({"son", "daughter", "neighbour", "neighbor", "gp", "sister
 BESIDE = re.compile(r"\b(?:right |just )?(?:next to|beside|behind|near|under(?:neath)?|in front of|on top of|close to)"
                     r" (?:the|my|your|that|this|our) \w+", re.IGNORECASE)
 ARTICLES = frozenset({"the", "a", "my", "your", "to"})
-NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "on", "for", "now", "please"})
+NOT_NAMES = frozenset({"the", "my", "your", "a", "an", "that", "this", "it", "one", "out", "off", "on", "for", "now",
+                       "please"})
 
 _IRREGULAR = {"gone": "go", "been": "go", "had": "have", "got": "get", "gotten": "get", "made": "make", "rung": "ring",
               "taken": "take", "driven": "drive", "done": "do", "found": "find", "told": "tell", "shown": "show",
@@ -192,7 +196,7 @@ NOT_THAT = re.compile(r"^(?:not|skip|leave(?! (?:us|me|them|him|her) to\b)|forge
 # charger": what follows in the same breath is postponed too.
 LATER_ONLY = re.compile(r"^(?:(?:later(?: on)?|tomorrow(?: morning| afternoon| evening)?|tonight|this (?:evening|"
                         r"afternoon)|after (?:lunch|dinner|breakfast|tea)|in an? (?:bit|while|hour|minute|moment)|"
-                        r"some other time|another time)\b(?:[\s,]+(?:perhaps|maybe|i think|or so))?[\s,]*)+$",
+                        r"some other time|another time)\b(?:[\s,]+(?:perhaps|maybe|i think|or so|only))?[\s,]*)+$",
                         re.IGNORECASE)  # "Later on, after lunch perhaps, …" (text test v63)
 # An exclamation said as a question, not a request: "…, can you believe it!", "would you believe it?"
 RHETORICAL = re.compile(r"^(?:can|could|would|will) (?:you|ye) (?:ever )?(?:believe|imagine|credit)\b"
@@ -302,6 +306,9 @@ def plain(text: str) -> str:
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _UR_ARE.sub("you're", _STRETCHED.sub(r"\1", text)))
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
     text = _QUOTE.sub("", text)  # "Step four: 'send the robot to the dock'": the words read out
+    # a "projector" misheard: no "or" between two things, and a command run on after it starts a clause
+    text = _PROJECT_OR.sub(lambda m: f"{m.group(1)} projector" + ("," if m.group(2) in IMPERATIVES else ""), text)
+    text = _ABEG_HEARD.sub("please ", text)  # Nigerian "abeg" (please) as speech-to-text writes it
     # "Put the, um, the picture thing on": one clause (text test v38)
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
@@ -315,7 +322,14 @@ def plain(text: str) -> str:
     return re.sub(r"\bplease to (?=\w)", "please ", text, flags=re.IGNORECASE)
 
 
-_NO_TAG = re.compile(r"(?<=\w),\s*no\?", re.IGNORECASE)
+# … in Polish and Czech too: "…, so first hallway, tak?" ("tak" was read as Scots "take": text test v111)
+# speech-to-text's "the project or" for "the projector" (audio test v104: "Switch off the project or go to
+# the bathroom, then call Anna" was read as one thing or the other, and the drive never made), and its
+# "a bag" for "abeg" (audio test v105: "a bag go to the kitchen." was talk)
+_ABEG_HEARD = re.compile(r"^(?:a bag|a beg|uh beg),?\s+(?=(?:go|come|call|ring|switch|turn|put|take|bring)\b)",
+                         re.IGNORECASE)
+_PROJECT_OR = re.compile(r"\b(the|that|your|my|this) project or\b(?=\s+(\w+)|)", re.IGNORECASE)
+_NO_TAG = re.compile(r"(?<=\w),\s*(?:no|tak|ano|prawda|dobrze|dobře|jo)\?", re.IGNORECASE)
 _GO_AHEAD = re.compile(r"\bgo ahead and (?=\w)", re.IGNORECASE)
 _WAIT_NO = re.compile(r"(?<=[.,!?;\u2026\u2014-]) *wait[,!.\u2026]*\s+"
                       r"(?=(?:no|nah|actually|never mind|forget|scratch)\b)", re.IGNORECASE)

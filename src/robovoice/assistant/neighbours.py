@@ -18,6 +18,7 @@ import re
 from robovoice.assistant.addressee import a_person
 from robovoice.assistant.amend import go_list
 from robovoice.assistant.clause_kind import classify
+from robovoice.assistant.dialects import ROOM
 from robovoice.assistant.lexicon import (
     ARTICLES,
     ASKING_VERBS,
@@ -31,7 +32,7 @@ from robovoice.assistant.lexicon import (
     fragment,
     words,
 )
-from robovoice.assistant.order_words import paused
+from robovoice.assistant.order_words import PAUSE, paused
 from robovoice.assistant.reading import Clause, ClauseKind
 
 # a habit: advice or a routine, not a request for now (a statement that names one stays talk)
@@ -51,7 +52,8 @@ _ASKED = re.compile(r"\b(?:for me|please|for us)\b", re.IGNORECASE)  # "I'll wai
 # a tag that says the clause before it is news ("…, just so you know", audio test v49: misheard, it drove)
 _TOLD = re.compile(r"^(?:(?:just )?so (?:you know|you're aware)|for your information|fyi|(?:i'm )?just (?:saying|"
                    r"letting you know))\W*$", re.IGNORECASE)
-_NOT_THAT = re.compile(r"^(?:(?:no|but|oh),? )*not (?:(?:the|my|your|to the) \w+(?: \w+)?|there)$", re.IGNORECASE)
+_NOT_THAT = re.compile(r"^(?:(?:no|but|oh),? )*not (?:(?:the|my|your|to the) \w+(?: \w+)?|there|" + ROOM + ")$",
+                       re.IGNORECASE)
 # the first word of a way told, not asked ("off to the bedroom", "into the kitchen")
 _WAYS = frozenset({"off", "into", "to", "back", "away", "out", "up", "down", "round", "over", "through", "towards",
                    "in", "across", "along"})
@@ -79,7 +81,7 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
         elif clause.kind is ClauseKind.REQUEST and _WATCHED.match(FILLER.sub("", before.text.strip()).strip()) \
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
-    out = _name_list(_said_to(_after_its_name(_past_why(_left_as_is(_counted(out)), text)), text), text)
+    out = _name_list(_said_to(_after_its_name(_past_why(_left_as_is(_counted(_dont_again(out))), text)), text), text)
     return _either_or(_before_that_last(_before_that_both(_done_too(_own_and(_not_that_but(out), text), text), text),
                                         text), text)
 
@@ -87,6 +89,35 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
 # "leave it on", "leave it alone": as it is (text test v107: "Turn off projector... leave it on" switched it off)
 _LEAVE_IT = re.compile(r"^(?:(?:no|actually|oh|wait|sorry),? )*(?:just )?leave (?:it|that|them)"
                        r" (on|off|alone|be|as (?:it is|they are))\W*$", re.IGNORECASE)
+
+
+# "Call Ben. Wait, don't call him yet.", "…, sorry, wait wait, don't call anybody first": the request
+# said before with the same verb is taken back (text test v113 rang Ben, and stopped for the "wait")
+_DONT_AGAIN = re.compile(r"^(?:(?:oh|no|sorry|actually|wait|hang on|hold on|eh|um|er),? )*(?:(?:please|just) )?"
+                         r"(?:don'?t|do not) (\w+)(?: (?:him|her|them|it|that|anybody|anyone|anything|anywhere|there))?"
+                         r"(?: (?:yet|now|just now|right now|first|after all|at all|then|today|please|up|on|off))*\W*$",
+                         re.IGNORECASE)
+_ONE_VERB = (frozenset({"call", "ring", "phone", "dial", "video", "facetime", "contact"}),
+             frozenset({"go", "drive", "head", "move", "come", "pop", "nip", "run"}),
+             frozenset({"switch", "turn", "put"}))
+
+
+def _dont_again(clauses: list[Clause]) -> list[Clause]:
+    """A "don't" with the verb of a request said before it takes that request back (`_DONT_AGAIN`)."""
+    out = list(clauses)
+    for i, clause in enumerate(out):
+        again = _DONT_AGAIN.match(FILLER.sub("", clause.text.strip()).strip())
+        if clause.kind is not ClauseKind.NEGATED or again is None:
+            continue
+        verb = base_form(again.group(1).lower())
+        verbs = next((v for v in _ONE_VERB if verb in v), frozenset({verb}))
+        for j in range(i):
+            said = words(FILLER.sub("", out[j].text.strip()))
+            if out[j].kind is ClauseKind.REQUEST and said and base_form(said[0]) in verbs:
+                out[j] = Clause(out[j].text, ClauseKind.NEGATED)
+            elif out[j].kind is ClauseKind.REQUEST and PAUSE.match(out[j].text.strip()):
+                out[j] = Clause(out[j].text, ClauseKind.STATEMENT)  # the "wait" before it: a pause, no stop
+    return out
 
 
 _NUMBERS = frozenset({"one", "two", "three", "four", "five", "six", "seven", "eight", "nine", "ten", "go"})
@@ -188,12 +219,15 @@ _CALL_WITH = re.compile(r"\b(?i:call|ring|phone|video|facetime|dial)\b.*\b(?!I\b
 
 def _said_to(clauses: list[Clause], text: str) -> list[Clause]:
     """"call Anna for me, Tom.": a name said last, after a comma, behind a call that has its person
-    already is whom the words were said to, not a second call (audio test v95: "…, tá?" heard so)."""
+    already is whom the words were said to, not a second call (audio test v95: "…, tá?" heard so);
+    so is one behind a request that is no call ("projector off and go to hallway, Anna": audio test
+    v102 heard a Czech "ano", yes, as "Anna", and rang her). Not a room ("…, Kitchen.")."""
     out = list(clauses)
     if len(out) > 1 and out[-1].kind is out[-2].kind is ClauseKind.REQUEST \
-            and (name := out[-1].text.strip()) and re.fullmatch(r"[A-Z][a-z]+", name) \
-            and _CALL_WITH.search(out[-2].text) and _joined(out[-2], out[-1], text, r"\s*,\s*") \
-            and re.search(re.escape(name) + r"\W*$", text):
+            and (name := out[-1].text.strip()) and re.fullmatch(r"(?:(?:Dr\.?|Doctor|Mr|Mrs|Ms) )?[A-Z][a-z]+", name) \
+            and not re.fullmatch(ROOM, name, re.IGNORECASE) \
+            and (_CALL_WITH.search(out[-2].text) or not set(words(out[-2].text)) & _ONE_VERB[0]) \
+            and _joined(out[-2], out[-1], text, r"\s*,\s*") and re.search(re.escape(name) + r"\W*$", text):
         out[-1] = Clause(out[-1].text, ClauseKind.STATEMENT)
     return out
 
@@ -216,8 +250,15 @@ def _name_list(clauses: list[Clause], text: str) -> list[Clause]:
 def _not_that_but(clauses: list[Clause]) -> list[Clause]:
     """"Change of plan, not the kitchen. Living room, and ring Clara …": the place said right after
     "not the X" is the one meant, when nothing follows it or a request does (text test v61); not
-    "Not the kitchen. The bathroom, I think, is where I left them."."""
+    "Not the kitchen. The bathroom, I think, is where I left them.". A room said just before the
+    "not the X" is meant too, when the same holds."""
     out = list(clauses)
+    for i in range(len(out) - 1):  # … and said before it: "HALLWAY, not living room." (text test v112)
+        room, after = out[i], out[i + 2:]
+        if room.kind is ClauseKind.STATEMENT and re.fullmatch(r"(?:the |my )?" + ROOM, room.text.strip(), re.I) \
+                and out[i + 1].kind is ClauseKind.NEGATED and _NOT_THAT.match(out[i + 1].text.strip()) \
+                and (not after or after[0].kind is ClauseKind.REQUEST or words(after[0].text) == words(room.text)):
+            out[i] = Clause(room.text, ClauseKind.REQUEST)
     for i in range(1, len(out)):
         said, last = out[i], i + 1 == len(out)
         if said.kind is ClauseKind.STATEMENT and fragment(said.text) and out[i - 1].kind is ClauseKind.NEGATED \

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 
-from robovoice.assistant.lexicon import FILLER, IMPERATIVES, words
+from robovoice.assistant.lexicon import FILLER, IMPERATIVES, LATER_ONLY, words
 
 # "…, and once you've got her, …": the step before done, then what follows
 HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
@@ -31,10 +31,11 @@ THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| 
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 # "… and before all that, come to the living room" (text test v90)
 BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else|(?:all|any) (?:of )?"
-                         r"(?:that|this)|everything(?: else)?)$", re.IGNORECASE)
+                         r"(?:that|this)|everything(?: else)?)(?:,? (?:though|tho))?$", re.IGNORECASE)  # (text v112)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now| so)?$", re.IGNORECASE)  # "go on so" (v59)
-PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm),? )*(?:wait|hang on|hold on)$", re.IGNORECASE)  # "oh wait"
+PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm|eh),? )*(?:wait|hang on|hold on)(?:,? (?:wait|hang on|hold on))*$",
+                   re.IGNORECASE)  # "oh wait", "wait wait"
 # "ring Anna, oh wait, no, …": only a bare "no" or "wait" said since, which a step put first leaves
 # standing; "no, forget it" took the call back for good
 _BARE_NO = re.compile(r"^(?:(?:oh|ah|um|er|erm|no|wait|sorry|actually|hmm|well) )*(?:no|wait|hang on|hold on|sorry)$",
@@ -88,3 +89,17 @@ def paused(text: str) -> bool:
     """Whether `text` is only a pause between a request and what is said of it: a bare "no" or "wait"
     (`only_paused`), or nothing but fillers ("hmm", "actually", "oh")."""
     return only_paused([text]) or not FILLER.sub("", text).strip()
+
+
+# the words of a time of day said alone ("…, later. Not now. Evening.")
+_WHEN = frozenset({"in", "the", "this", "evening", "morning", "afternoon", "tonight", "night", "tomorrow", "later"})
+
+
+def puts_off(said: str, after: Iterable[str]) -> bool:
+    """Whether `said`, right after a request, holds it back: "…, but not yet", "hold off"; or a time
+    alone with nothing said after it but more times (`after`: the clauses' words): "Anna call...
+    later. Not now. Evening." (text test v112 rang Anna); not "Go to the kitchen. Later, call Ben.",
+    where the time is the call's."""
+    return bool(NOT_BEFORE.match(said.strip())) or (bool(LATER_ONLY.match(said.strip())) and all(
+        NOT_BEFORE.match(a.strip()) or LATER_ONLY.match(a.strip()) or paused(a) or set(words(a)) <= _WHEN
+        for a in after))
