@@ -103,7 +103,9 @@ def main() -> None:
     sub = parser.add_subparsers(dest="command", required=True)
     one = sub.add_parser("dump")
     one.add_argument("out", type=Path)
-    one.add_argument("--skip", nargs="*", default=[], help="file stems to leave out (blind sets not yet run)")
+    # (extend: "--skip a --skip b" leaves out both; with a plain list only the last one was left out)
+    one.add_argument("--skip", nargs="+", action="extend", default=[],
+                     help="file stems to leave out (blind sets not yet run)")
     both = sub.add_parser("compare")
     both.add_argument("old", type=Path)
     both.add_argument("new", type=Path)
