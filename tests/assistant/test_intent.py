@@ -1489,8 +1489,10 @@ def test_mandarin_and_cantonese_courtesy(text: str, steps: tuple[str, ...]) -> N
     ("Turn the project or off and ring Clara.", ("Turn the projector off", "ring Clara")),
     ("Switch on the project or head to the lounge.", ("Switch on the projector", "head to the lounge")),
     ("Is it a project or a hobby?", ("Is it a project or a hobby",)),  # no projector misheard
+    ("End the coil now, Martha.", ("End the call now",)),  # (audio tests v102, v103)
+    ("The coil in the garden hose is stuck.", ()),
 ])
 def test_the_project_or_is_the_projector_misheard(text: str, steps: tuple[str, ...]) -> None:
     """Audio test v104: "Switch off the project or go to the bathroom, then call Anna." was read as
-    one thing or the other, and the drive was never made."""
+    one thing or the other, and the drive was never made; a "coil" ended is the call."""
     assert read_request(text).steps == steps

@@ -130,12 +130,18 @@ def set_aside(text: str) -> tuple[str, tuple[str, ...]]:
     return " ".join(kept), tuple(aside)
 
 
+# a person named, then what the speaker wants with them: the name is whom it is about
+_ABOUT_THEM = re.compile(r"(?:i|we)(?: really| just)? (?:need|want|would like|'d like|have|wish) to (?:talk|speak|see"
+                         r"|call|ring|phone|chat)(?: to| with)? (?:him|her)\b", re.IGNORECASE)
+
+
 def _without_name(sentence: str) -> str:
     """`sentence` without a person's name it opens with, when a clause of its own follows: said
     after a request, "Ben, stop that!" is a stop, not one more call (to Ben) and a stop."""
     if (opening := _opening_name(sentence)) is None:
         return sentence
     called, first = opening
-    if _STILL_ASKING.match(first) or (fragment(first) and first.split()[0].lower() not in IMPERATIVES):
-        return sentence
+    if _STILL_ASKING.match(first) or (fragment(first) and first.split()[0].lower() not in IMPERATIVES) \
+            or _ABOUT_THEM.match(first):
+        return sentence  # "Doctor Weber, I need to talk to him.": whom it is about (text test v115)
     return called.group("before") + called.group("rest")

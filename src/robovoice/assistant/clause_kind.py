@@ -125,6 +125,9 @@ SEE_IF = re.compile(r"^see (?:if|whether|how (?:much|many|full|charged|far|long)
 _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|peek|peep|gander)"
                    r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b"
                    r"|" + SEE_IF.pattern, re.IGNORECASE)
+# "look how beautiful the projector makes the room": an exclamation, no look asked (text test v116)
+_LOOK_HOW = re.compile(r"^look (?:how|what)\b|^look at (?:that|this|those|these|them|him|her|it)\W*$",
+                       re.IGNORECASE)
 # "See me to the front door", "see us out": a request to go along (not "see you later")
 _SEE_OFF = re.compile(r"^see (?:me|us|him|her|them) (?:out|to|off|down|up)\b", re.IGNORECASE)
 # A question tag on its own ("Don't you, Harold?") and a bare "tell it" (the robot) say nothing
@@ -217,7 +220,8 @@ def classify(clause: str) -> ClauseKind:
     if not text or RHETORICAL.match(text):
         return ClauseKind.STATEMENT
     if _ASIDE.match(text) or DO_THOSE.match(text) or (HABIT.search(lowered) and not STOP.search(lowered)) \
-            or _LEFT_TO_IT.match(lowered) or _MANNER_ONLY.match(lowered) or _LET_ME.match(lowered):
+            or _LEFT_TO_IT.match(lowered) or _MANNER_ONLY.match(lowered) or _LET_ME.match(lowered) \
+            or _LOOK_HOW.match(lowered):
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
     if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)"
                                                # "I don't want you to stop" (text test v59)

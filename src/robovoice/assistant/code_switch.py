@@ -42,7 +42,10 @@ _COURTESY = rules((
      r"|(?<!\w)(?:будь ласка|пожалуйста|прошу)(?!\w)", "please"),
     (r"\b(?:dzi[eę]kuj[eę](?: bardzo)?|mul[țt]umesc|xie ?xie|do ?je|dor ?je|多謝|谢谢)\b"
      r"|(?<!\w)(?:дякую|спасибо)(?!\w)", "thank you"),
-    (r"\b(?:kuai (?:yi )?dian|faai di)\b", "quickly"), (r"\s*,?\s*\b(?:hao ma|hou m hou)\b(?=\s*[?.!]|$)", ""),
+    (r"\b(?:kuai (?:yi )?dian|faai di)\b", "quickly"),
+    (r"\s*,?\s*\b(?:hao ma|hou m hou|hai mai|hai m hai|ho ma)\b(?=\s*[?.!]|$)", ""),  # tags: ok?, right?
+    # Cantonese "no need" and "in a while" (text test v115: "Go charge? Mh sai, …" went to charge)
+    (r"\b(?:mh? sai|唔使)\b", "no need"), (r"\b(?:yat (?:j|z)an sin|dang (?:yat )?(?:j|z)an|一陣先|等陣)\b", "later"),
     (r"\b(?:xiao )?jiqiren\b", "robot"),
     # Korean (text test v105): a name called ("Anna-ya") is the name (not "Clara-ssi": the honorific is
     # part of the name the model passes on, and the robot's contacts read it); please, thank you, quickly

@@ -190,7 +190,8 @@ def _scots(text: str) -> str:
 # "to the living room you go" and "off to bed you go" put the drive after its place
 _AND_AFTER_YOU = re.compile(r",?\s+and after you (?=(?:go|come|call|ring|switch|turn|put|close|end|hang|head|take)\b)",
                             re.IGNORECASE)
-_PLACE_YOU_GO = re.compile(r"\b(?:off |(back) )?(to|into) ((?:the|your|my) \w+(?: room| door| dock)?) you go\b",
+_PLACE_YOU_GO = re.compile(r"\b(?:off |(back) )?(to|into) ((?:the|your|my) \w+(?: room| door| dock)?)"
+                           r" you(?:'ll| will)? go\b",  # "To the bedroom you'll go" (text test v116)
                            re.IGNORECASE)
 
 # the verb after its object, as Korean, Japanese and Turkish put it: "Bathroom you go instead", "kitchen

@@ -117,7 +117,7 @@ SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| hav
 # kitchen, …": that may be whenever it is), and "… once you've got to the bedroom", said last.
 # "…, but only once you're in the kitchen" (text test v93); "… after you reach Abbu in the bedroom" (text test v89)
 ONCE_THERE = re.compile(r"^(?:only )?(?:once|as soon as) you(?:(?:'re| are) (?:(?:out|over|up|down|through) )?"  # (v55)
-                        r"(?:in|at|by|inside|into)| (?:reach|get to|arrive at|make it to)) "  # (text test v68)
+                        r"(?:in|at|by|inside|into)| (?:reach|get (?:to|in|into|inside)|arrive (?:at|in)|make it to)) "
                         r"((?:the|my|your) \w+(?: \w+)?|" + ROOM + r")$"
                         r"|^(?:only )?(?:after|when) you (?:reach|get to|arrive at|make it to)(?: \w+ (?:in|at))?"
                         r" ((?:the|my|your) \w+(?: \w+)?|" + ROOM + r")$",

@@ -166,8 +166,8 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses = [Clause(c.text, ClauseKind.REQUEST) if i in undone and not PAUSE.match(c.text) else c
                        for i, c in enumerate(clauses)]
             undone, corrected = [], False
-        if BEFORE_THAT.match(bare):
-            front = _first_asked(clauses)
+        if BEFORE_THAT.match(bare) or (FIRST_ALONE.match(part.strip()) and _first_asked(clauses) is not None):
+            front = _first_asked(clauses)  # "…, but first thing, go wait in the hallway" (text test v117)
             clauses.append(Clause(part, ClauseKind.STATEMENT))
             continue
         if (first_said := before_you(bare)) and classify(first_said) is ClauseKind.REQUEST:

@@ -26,7 +26,7 @@ FILLER = re.compile(
     r"bro|bruh|dude|yaar|arre|arey|accha|achha|acha|"  # young people's and Hinglish openers (text test v68)
     r"ay|oy vey|oy|oye|nu|hoy|oi|"  # Spanish, Yiddish (text test v69) and Tagalog ones (text test v76)
     r"aiyah|aiya|aiyoh|aiyo|alamak|walao|wah|"  # Singlish ones (text test v70)
-    r"eh|ehh|"  # (text test v113: "Call Ben. Eh, sorry, …" made a step of the "Eh")
+    r"eh|ehh|though|tho|"  # (text test v113: "Call Ben. Eh, sorry, …" made a step of the "Eh")
     r"bismillah|alhamdulillah|mashallah|masha'?allah|subhanallah|wallahi|"  # (text test v114: a step of "Bismillah")
     r"aye|och|ach|"  # Scots ones (text test v74)
     r"(?:i'?ll )?tell you what|"
@@ -309,6 +309,8 @@ def plain(text: str) -> str:
     # a "projector" misheard: no "or" between two things, and a command run on after it starts a clause
     text = _PROJECT_OR.sub(lambda m: f"{m.group(1)} projector" + ("," if m.group(2) in IMPERATIVES else ""), text)
     text = _ABEG_HEARD.sub("please ", text)  # Nigerian "abeg" (please) as speech-to-text writes it
+    text = _COIL.sub(r"\1 the call", text)  # "finish the coil now": the call, misheard
+    text = _DOCK_TOP.sub("the doctor", text)  # "call the dock top": the doctor, misheard
     # "Put the, um, the picture thing on": one clause (text test v38)
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
@@ -328,6 +330,9 @@ def plain(text: str) -> str:
 # "a bag" for "abeg" (audio test v105: "a bag go to the kitchen." was talk)
 _ABEG_HEARD = re.compile(r"^(?:a bag|a beg|uh beg),?\s+(?=(?:go|come|call|ring|switch|turn|put|take|bring)\b)",
                          re.IGNORECASE)
+# … and its "coil" for "call" after the words that end one (audio tests v102, v103: "Finish the coil now")
+_COIL = re.compile(r"\b(hang up|finish|end|stop|close|cut)\s+(?:the |this |that )?coil\b", re.IGNORECASE)
+_DOCK_TOP = re.compile(r"(?<=\bcall )the (?:dock top|dock tor|doc top|dog tor)\b", re.IGNORECASE)  # (audio v108)
 _PROJECT_OR = re.compile(r"\b(the|that|your|my|this) project or\b(?=\s+(\w+)|)", re.IGNORECASE)
 _NO_TAG = re.compile(r"(?<=\w),\s*(?:no|tak|ano|prawda|dobrze|dobře|jo)\?", re.IGNORECASE)
 _GO_AHEAD = re.compile(r"\bgo ahead and (?=\w)", re.IGNORECASE)

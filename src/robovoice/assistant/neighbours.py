@@ -82,6 +82,7 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
     out = _name_list(_said_to(_after_its_name(_past_why(_left_as_is(_counted(_dont_again(out))), text)), text), text)
+    out = _room_then(out, text)
     return _either_or(_before_that_last(_before_that_both(_done_too(_own_and(_not_that_but(out), text), text), text),
                                         text), text)
 
@@ -102,9 +103,29 @@ _ONE_VERB = (frozenset({"call", "ring", "phone", "dial", "video", "facetime", "c
              frozenset({"switch", "turn", "put"}))
 
 
+def _room_then(clauses: list[Clause], text: str) -> list[Clause]:
+    """"Living room. Projector on.": a room said alone as the first sentence, a request after it, is
+    the first step (text test v115: the projector came on where the robot stood); not where that
+    drive is asked anyway ("Bathroom. Go.", "Living room. Call Anna. Living room first, …")."""
+    if len(clauses) > 1 and clauses[0].kind is ClauseKind.STATEMENT and clauses[1].kind is ClauseKind.REQUEST \
+            and re.fullmatch(r"(?:the |my )?" + ROOM, clauses[0].text.strip(), re.IGNORECASE) \
+            and _joined(clauses[0], clauses[1], text, r"\s*[.!]\s*") \
+            and not set(words(clauses[1].text)[:1]) & _ONE_VERB[1] \
+            and not any(set(words(clauses[0].text)) - ARTICLES <= set(words(c.text)) for c in clauses[1:]):
+        return [Clause(clauses[0].text, ClauseKind.REQUEST), *clauses[1:]]
+    return clauses
+
+
 def _dont_again(clauses: list[Clause]) -> list[Clause]:
-    """A "don't" with the verb of a request said before it takes that request back (`_DONT_AGAIN`)."""
+    """A "don't" with the verb of a request said before it takes that request back (`_DONT_AGAIN`);
+    a bare "wait" said between a request and more words is a pause, no stop ("Call Ben. Ah, wait,
+    before that go to the hallway": text test v116 stopped the robot after the call)."""
     out = list(clauses)
+    for i in range(1, len(out) - 1):
+        if out[i].kind is ClauseKind.REQUEST and PAUSE.match(out[i].text.strip()) \
+                and any(c.kind is ClauseKind.REQUEST and not PAUSE.match(c.text.strip()) for c in out[:i]) \
+                and any(FILLER.sub("", c.text.strip()).strip() for c in out[i + 1:]):
+            out[i] = Clause(out[i].text, ClauseKind.STATEMENT)
     for i, clause in enumerate(out):
         again = _DONT_AGAIN.match(FILLER.sub("", clause.text.strip()).strip())
         if clause.kind is not ClauseKind.NEGATED or again is None:
@@ -223,10 +244,11 @@ def _said_to(clauses: list[Clause], text: str) -> list[Clause]:
     so is one behind a request that is no call ("projector off and go to hallway, Anna": audio test
     v102 heard a Czech "ano", yes, as "Anna", and rang her). Not a room ("…, Kitchen.")."""
     out = list(clauses)
+    verb = words(FILLER.sub("", out[-2].text.strip()))[:1] if len(out) > 1 else []
     if len(out) > 1 and out[-1].kind is out[-2].kind is ClauseKind.REQUEST \
             and (name := out[-1].text.strip()) and re.fullmatch(r"(?:(?:Dr\.?|Doctor|Mr|Mrs|Ms) )?[A-Z][a-z]+", name) \
             and not re.fullmatch(ROOM, name, re.IGNORECASE) \
-            and (_CALL_WITH.search(out[-2].text) or not set(words(out[-2].text)) & _ONE_VERB[0]) \
+            and (_CALL_WITH.search(out[-2].text) or not set(verb) & _ONE_VERB[0]) \
             and _joined(out[-2], out[-1], text, r"\s*,\s*") and re.search(re.escape(name) + r"\W*$", text):
         out[-1] = Clause(out[-1].text, ClauseKind.STATEMENT)
     return out

@@ -16,7 +16,9 @@ BACK_ONLY = re.compile(r"^\s*(?:with |to )?(?:him|her|them|it|that|this|through)
 # A place or a person with an order word and nothing else is a step: "first the kitchen, then …"
 ORDERED_FRAGMENT = re.compile(r"^(?!first things first$)(?:first(?:ly)?,? (?!of all$|thing$|off$|up$)(?:to |into )?"
                               r"(?:the |my |your )?"
-                              r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first)$", re.IGNORECASE)
+                              r"\w+(?: \w+)?|(?:the |my |your )?\w+(?: \w+)? first"
+                              r"(?: to (?!be\b)\w+(?: \w+){0,5})?)$",  # "… first to check the parcel" (text v115)
+                              re.IGNORECASE)
 FIRST_ALONE = re.compile(r"^(?:first(?:ly)?(?: of all| things first| thing| off| up)?|to (?:start|begin) with)$",
                          re.IGNORECASE)  # "First thing, put off that projector" (text test v95)
 # "…, and switch the projector on before all that" (text test v95): the step goes first, as "… first" does
