@@ -62,7 +62,8 @@ _POLITE = re.compile(
     r"|^i(?:'d| would) (?:really )?love\b|"  # "I'd very much like to speak to my nephew Ben" (text test v63)
     r"^i(?:'d| would)? (?:kindly )?request you to\b|"  # "I would request you to move to …" (text test v68)
     # (not what someone else is to do: "I want Anna to see the garden", text test v34)
-    r"^i (?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b|to\b)\w+) to \w)|"
+    r"^i (?:really )?(?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b"
+    r"|to\b)\w+) to \w)|"
     r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
     r"^(?:all|what|the one thing) i(?:'d| would)? (?:really )?(?:want|need|like) (?:from you )?is\b|"
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
@@ -166,6 +167,10 @@ _TO_PLACE = re.compile(r"^(?=.*\b(?:first|next|then|now|please|last|again|from t
                        r"on to|onto)\b)(?:(?:from there|then|next|first|after that),? )?"
                        r"(?:(?:on|off|back|over|up|down|through|round|straight) )*(?:on)?to (?:the|my|your) \w+"
                        r"(?: \w+)?(?: (?:first|next|then|now|please|last|again|after that))*$", re.IGNORECASE)
+# "Into the kitchen with you", "off to bed with ye": sent there (text test v119)
+_WITH_YOU = re.compile(r"^(?:(?:off|back|away|up|down|out|over|on) )*(?:to|into|in to|onto) (?:the |your |my )?"
+                       r"(?:\w+ )?(?:kitchen|room|lounge|bedroom|bathroom|hallway|hall|door|dock|charger|bed)"
+                       r" with (?:you|ya|ye)\b", re.IGNORECASE)  # (not "to be honest with you")
 # a place said alone after "now" (a filler before others): "Now the bathroom, and after, the bedroom" (text v102)
 _NOW_PLACE = re.compile(r"^now,? (?:(?:on )?to |into )?(?:the|your) (?:kitchen|living room|lounge|bedroom|bathroom"
                         r"|toilet|loo|hallway|hall|front door|door|dock|charger)$", re.IGNORECASE)  # not "now the news"
@@ -259,7 +264,7 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text) \
             or _COURSE.match(text) or _CAN_GO.match(text) or _TO_PLACE.match(text) or _NOW_PLACE.match(clause.strip()) \
-            or _SWITCHED.match(text) or _HOME_TO_CHARGE.match(text):
+            or _SWITCHED.match(text) or _HOME_TO_CHARGE.match(text) or _WITH_YOU.match(text):
         return ClauseKind.REQUEST
     if first in _WH and len(said) > 2 and said[1] in _TELLS:
         return ClauseKind.STATEMENT  # "…, where I think I left my hymn book": a place described, no question

@@ -8,6 +8,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.code_switch import in_english
+from robovoice.assistant.texting import from_texting
 
 
 def words(text: str) -> list[str]:
@@ -75,7 +76,7 @@ IMPERATIVES = frozenset({
     "power", "start", "stop", "end", "hang", "call", "ring", "phone", "dial", "video", "connect", "get",
     "tell", "show", "check", "look", "list", "read", "cancel", "return", "park", "wait", "stay", "halt",
     "freeze", "charge", "find", "play", "open", "close", "give", "let", "keep", "carry", "help", "pop",
-    "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow",
+    "leave", "forget", "abort", "quit", "finish", "send", "fetch", "navigate", "dock", "hurry", "follow", "facetime",
     "join", "photograph", "snap", "capture", "shut", "try", "nip", "plug", "trot", "toddle", "scoot", "wander", "zip",
     "kill", "gie", "enter",  # "kill the projector"; Scots "gie Clara a call" (give); "enter the kitchen"
     "place", "telephone", "proceed",  # formal: "place a call to …", "proceed to the living room"
@@ -282,7 +283,8 @@ _TEXTED = {"u": "you", "ur": "your", "urself": "yourself", "pls": "please", "plz
            "n": "and", "rn": "right now", "bot": "robot", "ngl": "honestly", "tbh": "honestly", "imo": "honestly",
            "fr": "really", "btw": "by the way", "idk": "I don't know", "rly": "really", "nah": "no", "naw": "no",
            "wanna": "want to", "gonna": "going to", "gotta": "got to",  # "after that I wanna call Ben" (text v56)
-           "ty": "thank you", "vid": "video", "nvm": "never mind"}  # "vid call Ben", "… rung Ben. ty" (text v60, v59)
+           "ty": "thank you", "vid": "video", "nvm": "never mind",  # "vid call Ben", "… rung Ben. ty" (text v60, v59)
+           "r": "are", "w": "with", "lowkey": "really"}  # "my hands r full", "hang up w anna" (text test v118)
 # "once ur in the kitchen": you're, before where or how it is (text test v60); else "your"
 _UR_ARE = re.compile(r"\bur(?= (?:in|at|on|by|there|here|back|done|finished|going|not|so|a|an|the|nearly|almost"
                      r"|\w+ing)\b)", re.IGNORECASE)
@@ -304,6 +306,7 @@ def plain(text: str) -> str:
     numbers said as order words ("first", "then")."""
     text = in_english(text)  # "prende el projector", "projector band karo" (text tests v69, v68)
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _UR_ARE.sub("you're", _STRETCHED.sub(r"\1", text)))
+    text = from_texting(text)  # "… anna you can hang up now", "need you in the bathroom" (text test v118)
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
     text = _QUOTE.sub("", text)  # "Step four: 'send the robot to the dock'": the words read out
     # a "projector" misheard: no "or" between two things, and a command run on after it starts a clause
@@ -311,6 +314,7 @@ def plain(text: str) -> str:
     text = _ABEG_HEARD.sub("please ", text)  # Nigerian "abeg" (please) as speech-to-text writes it
     text = _COIL.sub(r"\1 the call", text)  # "finish the coil now": the call, misheard
     text = _DOCK_TOP.sub("the doctor", text)  # "call the dock top": the doctor, misheard
+    text = _LET_GO.sub(r"end the call with \1", text)  # "Let Anna go now": the call, ended (text test v119)
     # "Put the, um, the picture thing on": one clause (text test v38)
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
@@ -333,6 +337,8 @@ _ABEG_HEARD = re.compile(r"^(?:a bag|a beg|uh beg),?\s+(?=(?:go|come|call|ring|s
 # … and its "coil" for "call" after the words that end one (audio tests v102, v103: "Finish the coil now")
 _COIL = re.compile(r"\b(hang up|finish|end|stop|close|cut)\s+(?:the |this |that )?coil\b", re.IGNORECASE)
 _DOCK_TOP = re.compile(r"(?<=\bcall )the (?:dock top|dock tor|doc top|dog tor)\b", re.IGNORECASE)  # (audio v108)
+_LET_GO = re.compile(r"\blet ((?-i:[A-Z])[a-z]+|her|him) go\b(?! (?:to|into|in|and|through|out|back)\b)",
+                     re.IGNORECASE)
 _PROJECT_OR = re.compile(r"\b(the|that|your|my|this) project or\b(?=\s+(\w+)|)", re.IGNORECASE)
 _NO_TAG = re.compile(r"(?<=\w),\s*(?:no|tak|ano|prawda|dobrze|dobře|jo)\?", re.IGNORECASE)
 _GO_AHEAD = re.compile(r"\bgo ahead and (?=\w)", re.IGNORECASE)

@@ -19,6 +19,9 @@ _ONCE_IN = re.compile(r"^((?:once|as soon as) you(?:'re| are) (?:in|at|by|inside
                       r"\s+(.+)$", re.IGNORECASE)
 
 
+_COURTESY_LAST = re.compile(r"(?:,?\s+(?:please|thanks|thank you))+\s*$", re.IGNORECASE)
+
+
 def arrival_first(parts: list[str]) -> list[str]:
     """A request that ends on where the robot will have got to ("give Anna a ring once you've
     made it to the bedroom") as two clauses in the order said: the arrival (a `SEQUENCE`
@@ -43,6 +46,8 @@ def arrival_first(parts: list[str]) -> list[str]:
         if (there := _ONCE_IN.match(part)) is not None and (cut := _once_in(there)) is not None:
             out += cut
             continue
+        if ARRIVED.search(bare := _COURTESY_LAST.sub("", part)):
+            part = bare  # "call anna after you get to the living room please" (text test v118)
         late = ARRIVED.search(part) or BEFORE_YOU_DO.search(part) or AFTER_YOU_DID.search(part)
         if late is not None and classify(part[:late.start()]) is ClauseKind.REQUEST:  # "once you're in X": X first
             # (text test v57; said in the present, "… after you get to the bedroom": text test v71)
