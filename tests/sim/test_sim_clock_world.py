@@ -62,6 +62,7 @@ def test_clock_rejects_a_bad_speed() -> None:
         ("home", "charging dock"),  # the robot's home is its dock (text test v63: "home to the dock with you")
         ("base", "charging dock"),
         ("Abbu's bedroom", "bedroom"), ("Granny's kitchen", "kitchen"),  # the home's one room (text test v110)
+        ("grandmas bedroom", "bedroom"), ("dads kitchen", "kitchen"),  # typed with no apostrophe (text test v118)
     ],
 )
 def test_place_names_are_normalised(text: str, expected: str) -> None:
@@ -71,7 +72,7 @@ def test_place_names_are_normalised(text: str, expected: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["garage", "", "the", "kitchen sink", "room", "door", "cellar", "bed", "Ben's room",
-                                  "Anna's garage"])
+                                  "bens room", "bathrooms", "Anna's garage"])
 def test_unknown_places_are_never_invented(text: str) -> None:
     assert world.find_place(text) is None
 

@@ -119,7 +119,8 @@ def find_place(text: str) -> Place | None:
     key = normalise(text)
     if not key:
         return None
-    if (whose := re.match(r"^[a-z]+ s (.+)$", key)) is not None and (found := find_place(whose.group(1))):
+    # (also typed with no apostrophe: "grandmas bedroom", text test v118)
+    if (whose := re.match(r"^[a-z]+(?: s|s) (.+)$", key)) is not None and (found := find_place(whose.group(1))):
         return found
     for candidate in (key, key.replace(" ", "")):
         for name, place in _BY_NAME.items():
