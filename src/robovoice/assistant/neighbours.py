@@ -52,6 +52,7 @@ _ASKED = re.compile(r"\b(?:for me|please|for us)\b", re.IGNORECASE)  # "I'll wai
 # a tag that says the clause before it is news ("…, just so you know", audio test v49: misheard, it drove)
 _TOLD = re.compile(r"^(?:(?:just )?so (?:you know|you're aware)|for your information|fyi|(?:i'm )?just (?:saying|"
                    r"letting you know))\W*$", re.IGNORECASE)
+_ROOM_ALONE = re.compile(r"(?:the |my )?" + ROOM, re.IGNORECASE)  # a room named and nothing else
 _NOT_THAT = re.compile(r"^(?:(?:no|but|oh),? )*not (?:(?:the|my|your|to the) \w+(?: \w+)?|there|" + ROOM + ")$",
                        re.IGNORECASE)
 # the first word of a way told, not asked ("off to the bedroom", "into the kitchen")
@@ -108,7 +109,7 @@ def _room_then(clauses: list[Clause], text: str) -> list[Clause]:
     the first step (text test v115: the projector came on where the robot stood); not where that
     drive is asked anyway ("Bathroom. Go.", "Living room. Call Anna. Living room first, …")."""
     if len(clauses) > 1 and clauses[0].kind is ClauseKind.STATEMENT and clauses[1].kind is ClauseKind.REQUEST \
-            and re.fullmatch(r"(?:the |my )?" + ROOM, clauses[0].text.strip(), re.IGNORECASE) \
+            and _ROOM_ALONE.fullmatch(clauses[0].text.strip()) \
             and _joined(clauses[0], clauses[1], text, r"\s*[.!]\s*") \
             and not set(words(clauses[1].text)[:1]) & _ONE_VERB[1] \
             and not any(set(words(clauses[0].text)) - ARTICLES <= set(words(c.text)) for c in clauses[1:]):
@@ -123,7 +124,8 @@ def _dont_again(clauses: list[Clause]) -> list[Clause]:
     out = list(clauses)
     for i in range(1, len(out) - 1):
         if out[i].kind is ClauseKind.REQUEST and PAUSE.match(out[i].text.strip()) \
-                and any(c.kind is ClauseKind.REQUEST and not PAUSE.match(c.text.strip()) for c in out[:i]) \
+                and any(c.kind in (ClauseKind.REQUEST, ClauseKind.NEGATED) and not PAUSE.match(c.text.strip())
+                        for c in out[:i]) \
                 and any(FILLER.sub("", c.text.strip()).strip() for c in out[i + 1:]):
             out[i] = Clause(out[i].text, ClauseKind.STATEMENT)
     for i, clause in enumerate(out):
@@ -136,8 +138,6 @@ def _dont_again(clauses: list[Clause]) -> list[Clause]:
             said = words(FILLER.sub("", out[j].text.strip()))
             if out[j].kind is ClauseKind.REQUEST and said and base_form(said[0]) in verbs:
                 out[j] = Clause(out[j].text, ClauseKind.NEGATED)
-            elif out[j].kind is ClauseKind.REQUEST and PAUSE.match(out[j].text.strip()):
-                out[j] = Clause(out[j].text, ClauseKind.STATEMENT)  # the "wait" before it: a pause, no stop
     return out
 
 
@@ -247,7 +247,7 @@ def _said_to(clauses: list[Clause], text: str) -> list[Clause]:
     verb = words(FILLER.sub("", out[-2].text.strip()))[:1] if len(out) > 1 else []
     if len(out) > 1 and out[-1].kind is out[-2].kind is ClauseKind.REQUEST \
             and (name := out[-1].text.strip()) and re.fullmatch(r"(?:(?:Dr\.?|Doctor|Mr|Mrs|Ms) )?[A-Z][a-z]+", name) \
-            and not re.fullmatch(ROOM, name, re.IGNORECASE) \
+            and not _ROOM_ALONE.fullmatch(name) \
             and (_CALL_WITH.search(out[-2].text) or not set(verb) & _ONE_VERB[0]) \
             and _joined(out[-2], out[-1], text, r"\s*,\s*") and re.search(re.escape(name) + r"\W*$", text):
         out[-1] = Clause(out[-1].text, ClauseKind.STATEMENT)
@@ -277,7 +277,7 @@ def _not_that_but(clauses: list[Clause]) -> list[Clause]:
     out = list(clauses)
     for i in range(len(out) - 1):  # … and said before it: "HALLWAY, not living room." (text test v112)
         room, after = out[i], out[i + 2:]
-        if room.kind is ClauseKind.STATEMENT and re.fullmatch(r"(?:the |my )?" + ROOM, room.text.strip(), re.I) \
+        if room.kind is ClauseKind.STATEMENT and _ROOM_ALONE.fullmatch(room.text.strip()) \
                 and out[i + 1].kind is ClauseKind.NEGATED and _NOT_THAT.match(out[i + 1].text.strip()) \
                 and (not after or after[0].kind is ClauseKind.REQUEST or words(after[0].text) == words(room.text)):
             out[i] = Clause(room.text, ClauseKind.REQUEST)
