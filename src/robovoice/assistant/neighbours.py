@@ -99,9 +99,9 @@ _DONT_AGAIN = re.compile(r"^(?:(?:oh|no|sorry|actually|wait|hang on|hold on|eh|u
                          r"(?:don'?t|do not) (\w+)(?: (?:him|her|them|it|that|anybody|anyone|anything|anywhere|there))?"
                          r"(?: (?:yet|now|just now|right now|first|after all|at all|then|today|please|up|on|off))*\W*$",
                          re.IGNORECASE)
-_ONE_VERB = (frozenset({"call", "ring", "phone", "dial", "video", "facetime", "contact"}),
-             frozenset({"go", "drive", "head", "move", "come", "pop", "nip", "run"}),
-             frozenset({"switch", "turn", "put"}))
+_CALLING = frozenset({"call", "ring", "phone", "dial", "video", "facetime", "contact"})
+_GOING = frozenset({"go", "drive", "head", "move", "come", "pop", "nip", "run"})
+_ONE_VERB = (_CALLING, _GOING, frozenset({"switch", "turn", "put"}))  # verbs that ask for the same thing
 
 
 def _room_then(clauses: list[Clause], text: str) -> list[Clause]:
@@ -111,7 +111,7 @@ def _room_then(clauses: list[Clause], text: str) -> list[Clause]:
     if len(clauses) > 1 and clauses[0].kind is ClauseKind.STATEMENT and clauses[1].kind is ClauseKind.REQUEST \
             and _ROOM_ALONE.fullmatch(clauses[0].text.strip()) \
             and _joined(clauses[0], clauses[1], text, r"\s*[.!]\s*") \
-            and not set(words(clauses[1].text)[:1]) & _ONE_VERB[1] \
+            and not set(words(clauses[1].text)[:1]) & _GOING \
             and not any(set(words(clauses[0].text)) - ARTICLES <= set(words(c.text)) for c in clauses[1:]):
         return [Clause(clauses[0].text, ClauseKind.REQUEST), *clauses[1:]]
     return clauses
@@ -248,7 +248,7 @@ def _said_to(clauses: list[Clause], text: str) -> list[Clause]:
     if len(out) > 1 and out[-1].kind is out[-2].kind is ClauseKind.REQUEST \
             and (name := out[-1].text.strip()) and re.fullmatch(r"(?:(?:Dr\.?|Doctor|Mr|Mrs|Ms) )?[A-Z][a-z]+", name) \
             and not _ROOM_ALONE.fullmatch(name) \
-            and (_CALL_WITH.search(out[-2].text) or not set(verb) & _ONE_VERB[0]) \
+            and (_CALL_WITH.search(out[-2].text) or not set(verb) & _CALLING) \
             and _joined(out[-2], out[-1], text, r"\s*,\s*") and re.search(re.escape(name) + r"\W*$", text):
         out[-1] = Clause(out[-1].text, ClauseKind.STATEMENT)
     return out
