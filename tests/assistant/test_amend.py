@@ -14,6 +14,9 @@ from robovoice.assistant.reading import ClauseKind
     ("Go to the bathroom, or rather the bedroom.", ("or rather the bedroom",)),
     ("Head to the kitchen, correction, the living room.", ("the living room",)),
     ("Turn the projector on, I mean off.", ("Turn the projector off",)),  # a state takes the request's words
+    ("Go to the kitchen. Wait, the bathroom.", ("the bathroom",)),  # a bare "wait" before the value
+    ("Call Anna. Hang on, Ben.", ("Ben",)),
+    ("Go to the kitchen. Oh wait, the bedroom I mean.", ("the bedroom",)),  # the "I mean" said after
 ])
 def test_a_value_said_after_a_correction_word_puts_the_last_request_right(text: str, steps: tuple[str, ...]) -> None:
     intent = read_request(text)
@@ -26,6 +29,8 @@ def test_a_value_said_after_a_correction_word_puts_the_last_request_right(text: 
     ("Go to the kitchen, sorry, the bedroom after that.", ("Go to the kitchen", "the bedroom after that")),
     ("Go to the kitchen please. Sorry, my dear.", ("Go to the kitchen please",)),
     ("Call Ben, sorry for the bother.", ("Call Ben",)),
+    ("Go to the kitchen, wait by the front door.", ("Go to the kitchen", "wait by the front door")),  # a step
+    ("Go to the kitchen... wait, and then the bathroom.", ("Go to the kitchen", "the bathroom")),
     ("Switch the projector on. Sorry, I'm muddled today.", ("Switch the projector on",)),
     # put right already: only what the "not" names is taken back
     ("Go to the bedroom, then the kitchen, sorry, not the kitchen, I meant the living room.",

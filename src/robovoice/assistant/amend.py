@@ -36,11 +36,18 @@ from robovoice.assistant.lexicon import (
 from robovoice.assistant.reading import Clause, ClauseKind
 
 _MARK = re.compile(r"^(?:sorry|(?:i )?beg your pardon|pardon(?: me)?|i mean[t]?|or rather|rather|correction"
-                   r"|make (?:that|it))\b[\s,:;.-]*",
+                   r"|make (?:that|it)"
+                   # a pause said before the value it puts right: "Go to the kitchen. Wait, the bathroom" (a
+                   # bare "wait" only: "…, wait by the door" is a step)
+                   r"|(?:(?:oh|ah) )?(?:wait|hang on|hold on)(?=\s*[,:;.\u2013\u2014-]|\s*$))\b[\s,:;.-]*",
                    re.IGNORECASE)
 # what follows "I mean" and is no place or person: "…, I mean it", "…, sorry love"
 _NOT_A_VALUE = re.compile(r"^(?:it|that|this|so|well|business|what i say|honestly|really|again|everyone|folks|all"
                           r"|about (?:that|this)|my (?:mistake|fault|bad|error)|wrong one)$", re.IGNORECASE)
+_PAUSED = re.compile(r"^(?:(?:oh|ah) )?(?:wait|hang on|hold on)\b", re.IGNORECASE)
+# "…, hang on, not yet"; "…. Hang on. Hallway first": a request taken back, a step put before it
+_BEFORE_OR_NOT = re.compile(r"^(?:not|no|never)\b|\b(?:first|before)\b", re.IGNORECASE)
+_MARK_AFTER = re.compile(r"[\s,]+(?:i mean[t]?|sorry)\W*$", re.IGNORECASE)
 _ON_WORDS = r"\b(?:and|then|next|after|afterwards|also|too|plus|as well)\b"  # "…, then the bedroom": one more step
 _GOES_ON = re.compile(_ON_WORDS, re.IGNORECASE)
 
@@ -56,6 +63,8 @@ def marker_rest(part: str, text: str) -> str | None:
     if not said[mark.end():] and re.search(re.escape(said) + r"[\s,;:.\u2013\u2014-]*" + _ON_WORDS, text,
                                           re.IGNORECASE):
         return None
+    if not said[mark.end():] and _PAUSED.match(said) and not re.search(re.escape(said) + r"\W*\w", text):
+        return None  # "Go to the garage. Wait!": a "wait" said last is asked (a stop), no correction
     return said[mark.end():].strip()
 
 
@@ -64,6 +73,7 @@ def puts_right(said: str) -> bool:
     names the value that replaces the last request's: a place, a person, "on" or "off"."""
     value = FILLER.sub("", said).strip(" .,!?")
     return bool(value) and fragment(said) and not _GOES_ON.search(said) and not _NOT_A_VALUE.match(value) \
+        and not _BEFORE_OR_NOT.search(value) \
         and not TAG.match(value) and not WITHDRAWAL.match(value)
 
 
@@ -94,6 +104,8 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
     if rest == "":
         return [*clauses, Clause(part, ClauseKind.STATEMENT)], True
     said = rest if rest is not None else part if pending else None
+    if said:  # "…. Oh wait, the bedroom I mean"
+        said, part = _MARK_AFTER.sub("", said), _MARK_AFTER.sub("", part)
     if not said or not puts_right(said) or repeats(said, clauses[last].text):
         return None, False
     fixed = [Clause(c.text, ClauseKind.NEGATED) if i == last else c for i, c in enumerate(clauses)]
