@@ -232,6 +232,23 @@ async def test_an_unsure_stop_with_the_wake_word_stops_only_a_robot_that_moves(
         assert [e.text for e in s.log.of(SentenceSpoken)] == [DIDNT_CATCH]
 
 
+@pytest.mark.parametrize("setup", ["", "driving"])
+async def test_unsure_words_with_a_stop_of_their_own_stop_a_robot_that_moves_and_do_nothing_else(
+    setup: str, server: FakeOpenAIServer, backend: OpenAICompatBackend,
+) -> None:
+    """Audio test v111: "Hey Jarvis, stop right there, the cat's behind you!" in noise came out
+    unsure with a stop as its first clause, and was turned away: the robot drove on."""
+    stt = ScoredTranscriber()
+    async with voice_session(fake_models(stt), backend, speed=2.0, sim_speed=2.0, setup=setup) as s:
+        stt.text, stt.avg_logprob = "Hey Jarvis, stop right here, look after Smith Heiden, do it.", UNSURE
+        await s.say(wake_command())
+        await s.log.wait_for(SentenceSpoken)
+        await s.settle()
+    assert server.requests == [] and not s.sim.state.moving  # no model: nothing but the stop
+    stopped, unsure = s.log.of(RobotStopped), [e for e in s.log.of(UtteranceIgnored) if e.reason.startswith("unsure")]
+    assert (len(stopped), len(unsure)) == ((1, 0) if setup == "driving" else (0, 1))
+
+
 async def test_an_unsure_spoken_stop_still_stops_at_once(
     server: FakeOpenAIServer, backend: OpenAICompatBackend,
 ) -> None:

@@ -34,7 +34,7 @@ from robovoice.voice.motion import MotionWatch
 from robovoice.voice.progress import ProgressNarrator
 from robovoice.voice.roles import VoiceRoles
 from robovoice.voice.speech import SpeechOutput
-from robovoice.voice.stop import is_stop_command
+from robovoice.voice.stop import is_stop_command, says_stop
 from robovoice.voice.stopping import StopController
 from robovoice.voice.turns import TurnTaking, Verdict
 from robovoice.voice.utterance import (
@@ -189,7 +189,11 @@ class CommandTurn:
                 # (none made at a pause, the robot still): Whisper writes "Stop! Stop! Stop!" for
                 # commands drowned in noise (audio v20)
                 nothing_to_stop = c.motion.known_still and not c.stopper.stopped_for(utt.start)
-                if is_stop_command(text) and not (unsure is not None and nothing_to_stop):
+                # unsure words with a stop as a clause of their own stop a robot that moves, and do
+                # nothing else ("Stop right there, look after Smith Heiden" for "…, the cat's behind
+                # you!": audio test v111 kept driving)
+                if (is_stop_command(text) or (unsure is not None and says_stop(text))) \
+                        and not (unsure is not None and nothing_to_stop):
                     c.assistant.confirmations.clear()  # a "stop" is no yes to "Shall I call Anna?"
                     if not await c.stopper.stop_once(utt.start, text, utt.end, metrics, self.id):
                         await report_ignored(c.emit, c.stats, "stopped_at_pause", utt, raw)  # at a pause

@@ -17,7 +17,7 @@ STOP_PHRASES: Final = frozenset({
     "stop", "halt", "freeze", "stop moving", "stop driving", "stop it",
     "stop right there", "stop there", "stop now", "stop right now", "emergency stop", "stop stop", "hold it",
     "hold it right there", "wait", "wait there", "hold on", "stay there", "stay put", "stay where you are",
-    "stay right where you are", "stay right there", "don't move",
+    "stay right where you are", "stay right there", "don't move", "stop here", "stop right here",
     # idioms people use for the same (text test v25: "Whoa whoa, hold your horses!" during a drive)
     "hold your horses", "hang on", "stand still", "stay still", "stop where you are", "hold still", "keep still",
     "hold up", "quit rolling", "quit moving", "quit driving", "stop rolling",  # Southern US (text test v71)
