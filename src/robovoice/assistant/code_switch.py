@@ -26,6 +26,7 @@ from robovoice.assistant.russian_turkish import from_russian_turkish
 from robovoice.assistant.spanish import from_spanish, said_in_spanish
 from robovoice.assistant.swahili import from_swahili
 from robovoice.assistant.tagalog import from_tagalog
+from robovoice.assistant.tamil_malayalam import from_tamil_malayalam
 from robovoice.assistant.topic_first import from_topic_first
 from robovoice.assistant.vietnamese_japanese import from_vietnamese_japanese
 
@@ -57,9 +58,11 @@ _COURTESY = rules((
 
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
-    Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Dari, Indonesian, Malay
-    and Thai put in English."""
-    text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(from_tagalog(text))))))
+    Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Dari, Indonesian, Malay,
+    Thai, Tamil and Malayalam put in English."""
+    # (Tamil first: Tagalog drops its "po", which Tamil's "Kitchen-ku po" needs)
+    text = from_tagalog(from_tamil_malayalam(text))
+    text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(text)))))
     text = from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text))))
     return from_indonesian_thai(from_persian(from_vietnamese_japanese(from_russian_turkish(text))))
 
@@ -67,7 +70,8 @@ def _other_languages(text: str) -> str:
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
     Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Indonesian,
-    Malay, Thai or Spanish words that `in_english` puts in English (a dialect of English is not another language)."""
+    Malay, Thai, Tamil, Malayalam or Spanish words that `in_english` puts in English (a dialect of English is not
+    another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 
