@@ -1496,3 +1496,23 @@ def test_the_project_or_is_the_projector_misheard(text: str, steps: tuple[str, .
     """Audio test v104: "Switch off the project or go to the bathroom, then call Anna." was read as
     one thing or the other, and the drive was never made; a "coil" ended is the call."""
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # text test v121: a question announced, a part's ability asked, a call talked of with "is"
+    ("Tell me one thing, can that projector of yours show films on the wall?", ()),
+    ("Can your camera see into the kitchen?", ()),
+    ("Video call is only for Anna, or Ben also you can reach?", ()),
+    ("Call Anna, is she up?", ("Call Anna", "is she up")),  # the request before the question stays
+    ("Then sit on your charger.", ("sit on your charger",)),
+])
+def test_a_question_announced_a_parts_ability_and_a_call_talked_of_ask_nothing(
+        text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps
+
+
+def test_a_room_to_come_back_to_is_worded_as_a_drive_there() -> None:
+    """Told "come back to the living room", the model went to the dock (text test v121)."""
+    intent = read_request("After you check the front door, come back to the living room, okay?")
+    assert intent.worded_steps == ("check the front door", "go to the living room")
+    assert read_request("Come back to your dock.").worded_steps == ("Come back to your dock",)

@@ -31,7 +31,13 @@ def test_a_texted_message_gets_its_sentences_and_subject_back(said: str, english
     ("Into the garage with you, and then ring Ben.", ("Into the garage with you", "ring Ben")),
     ("Let Clara go now and ring Ben.", ("end the call with Clara now", "ring Ben")),
     ("Let Ben go to the garage", ("Let Ben go to the garage",)),  # not the call's end
+    ("Finish with Anna now, and after, go and charge.", ("end the call with Anna now", "go charge")),
+    ("I'll finish with Anna's photos later.", ()),
+    ("Mamgu, the projector on this thing is decent, isn't it.", ()),  # "on this thing": no state
     ("Go to the lounge please", ("Go to the lounge please",)),
+    # a remark on the job after it is no step of its own
+    ("go to the kitchen then call anna. easy", ("go to the kitchen", "call anna")),
+    ("Hallway, then ring Ben. Cheers x", ("Hallway", "ring Ben")),
 ])
 def test_texted_and_irish_requests_are_read_as_asked(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps

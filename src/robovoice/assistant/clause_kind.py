@@ -136,7 +136,10 @@ _SEE_OFF = re.compile(r"^see (?:me|us|him|her|them) (?:out|to|off|down|up)\b", r
 _ASIDE = re.compile(r"^(?:(?:do|does|did|is|are|was|were|can|could|would|will|have|has)n'?t|won'?t) "
                     r"(?:you|he|she|it|they|we|i)$|^(?:tell|ask) it$"
                     # "look at it away down the hallway": the robot, talked about (text test v51)
-                    r"|^(?:look|see) at (?:it|him|her|that thing|the robot|the wee thing)\b(?! and\b)", re.IGNORECASE)
+                    r"|^(?:look|see) at (?:it|him|her|that thing|the robot|the wee thing)\b(?! and\b)"
+                    # a question announced: "Tell me one thing, can that projector …?" (text test v121)
+                    r"|^(?:tell me|let me ask(?: you)?|answer me|may i ask(?: you)?) (?:one thing|something|a thing"
+                    r"|this|one question|a question)$", re.IGNORECASE)
 # "You drive in the kitchen", "Robot, you finish this call now": a request in the present
 # tense, as a speaker of another first language says it (text test v49), for the robot's own
 # actions (not "you make me laugh", "you drive like my husband", "you always go there")
@@ -175,6 +178,9 @@ _WITH_YOU = re.compile(r"^(?:(?:off|back|away|up|down|out|over|on) )*(?:to|into|
 _NOW_PLACE = re.compile(r"^now,? (?:(?:on )?to |into )?(?:the|your) (?:kitchen|living room|lounge|bedroom|bathroom"
                         r"|toilet|loo|hallway|hall|front door|door|dock|charger)$", re.IGNORECASE)  # not "now the news"
 # home for its charge, said alone: "…, then home to charge", "then home for a charge" (text test v111)
+# "then sit in the charger" (text test v121): the dock, asked
+_SIT_ON_DOCK = re.compile(r"^(?:go and |go )?(?:sit|rest|settle) (?:yourself )?(?:in|on|at|back on) (?:the |your )?"
+                          r"(?:charger|dock|charging dock|charging station|base)\b", re.IGNORECASE)
 _HOME_TO_CHARGE = re.compile(r"^(?:(?:straight|right|back) )?home "
                              r"(?:to (?:re)?charge|for (?:a |your )?(?:re)?charg(?:e|ing))"
                              r"(?:,? (?:please|now|then))?\W*$",
@@ -190,11 +196,13 @@ _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+"
                           r"(?: (?:so|then|and|please|now|for)\b|$)", re.IGNORECASE)
 # a thing switched, said first: "projector on for my drama" (text test v105: no step)
 _SWITCHED = re.compile(r"^(?:the |that |your |my )?(?:projector|telly|tv|television|screen)s? (?:on|off)\b"
-                       r"(?! (?:the|a|my|your|its)\b)", re.IGNORECASE)
+                       r"(?! (?:the|a|my|your|its|this|that|these|those)\b)", re.IGNORECASE)  # "… on this thing is …"
 # what the speaker will do themselves: "First let me find my glasses" (text test v105: put first, then the call)
 _LET_ME = re.compile(r"^let me (?!(?:know|see|hear|talk|speak|have|call|ring|phone|video)\b)\w+", re.IGNORECASE)
 # "The bedroom's where I need you", "kitchen is where you should be": a place asked for
 _WHERE_WANTED = re.compile(r"(?:'s| is) where " + WANTED_THERE, re.IGNORECASE)
+_COPULA = frozenset({"is", "are", "was", "were"})
+_NOUNS_TOO = frozenset({"call", "video", "ring", "phone", "drive", "charge"})  # (not "check are the windows shut")
 _SUBJECTS = frozenset({"i", "we", "he", "she", "they", "it", "that", "this", "there", "you"})  # "I'm off now"
 _WH = frozenset({"what", "where", "which", "who", "when", "how"})
 # right after a question word, these ask nothing: "where I left my hymn book" (text test v46)
@@ -252,6 +260,8 @@ def classify(clause: str) -> ClauseKind:
     if not said:  # no word in Latin letters ("Будь ласка,": Ukrainian please, text test v98): nothing asked
         return ClauseKind.STATEMENT
     first = said[0]
+    if first in _NOUNS_TOO and len(said) > 1 and ({said[1], *said[2:3]} & _COPULA):
+        return ClauseKind.STATEMENT  # "Video call is only for Anna, …?": the thing talked of (text test v121)
     if first == "do" and ((len(said) > 1 and said[1] in IMPERATIVES)
                           or re.search(r"\b(?:please|kindly)\W*$", said_first, re.I)):
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
@@ -264,7 +274,8 @@ def classify(clause: str) -> ClauseKind:
         return ClauseKind.REQUEST
     if _LOOK.match(text) or _ON_OFF_WITH.match(text) or _WHERE_WANTED.search(text) or _SEE_OFF.match(text) \
             or _COURSE.match(text) or _CAN_GO.match(text) or _TO_PLACE.match(text) or _NOW_PLACE.match(clause.strip()) \
-            or _SWITCHED.match(text) or _HOME_TO_CHARGE.match(text) or _WITH_YOU.match(text):
+            or _SWITCHED.match(text) or _HOME_TO_CHARGE.match(text) or _WITH_YOU.match(text) \
+            or _SIT_ON_DOCK.match(text):
         return ClauseKind.REQUEST
     if first in _WH and len(said) > 2 and said[1] in _TELLS:
         return ClauseKind.STATEMENT  # "…, where I think I left my hymn book": a place described, no question

@@ -20,7 +20,10 @@ _ABILITY = re.compile(
     r"|^can you (?:actually|really|even|honestly|seriously)\b(?!.*\b(?:please|now|just|for me)\b)"
     # owning a part is asked at the start ("do you have a camera?"); "how much battery do you
     # have left?" asks about the robot's state
-    r"|^(?:do you have|have you got)\b",
+    r"|^(?:do you have|have you got)\b"
+    # what a part of it can do: "can that projector of yours show films on the wall?" (text test v121)
+    r"|^(?!.*\b(?:please|now|for me)\b)(?:can|could|does|will) (?:that|the|this|your) (?:projector|screen|camera)"
+    r"(?: of yours)? \w+",
     re.IGNORECASE,
 )
 # "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").

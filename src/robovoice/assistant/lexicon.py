@@ -9,6 +9,7 @@ import re
 
 from robovoice.assistant.code_switch import in_english
 from robovoice.assistant.texting import from_texting
+from robovoice.assistant.word_finding import words_found
 
 
 def words(text: str) -> list[str]:
@@ -245,6 +246,9 @@ DO_THOSE = re.compile(r"^(?:do|carry out|follow) (?:those|these|them|both|all (?
 # "stay put", "stay where you are": a verb of keeping as things are, never a verbless continuation ("Go to
 # the kit... no. No, don't. Stay put." read "stay put" as the place corrected to: text test v53)
 _HOLD_STILL = re.compile(r"^(?:stay|remain)\b")
+# a remark on the job, no thing in it ("go to the kitchen then call anna. easy": text test v118)
+_REMARK = re.compile(r"^(?:easy(?: peasy)?|simple|nice one|lovely|great|perfect|brill(?:iant)?|sorted|cool|ace"
+                     r"|fab|super|awesome|ta|cheers|thx|ty|lol|haha|x+|k+|done|job done|that's it|thats it)(?: x+)?$")
 
 
 def fragment(part: str) -> bool:
@@ -254,7 +258,7 @@ def fragment(part: str) -> bool:
     text = re.sub(r"\s+(?:after that|afterwards|after|next|too|as well|with you|instead)$", "", text)
     text = _PURPOSE.sub(r"\1", text)  # what it is for: "the front door to see me out"
     return not _HEDGE.match(text) and not _SUBJECT_VERB.match(text) and not DO_THOSE.match(text) \
-        and not _HOLD_STILL.match(text) and bool(re.match(
+        and not _HOLD_STILL.match(text) and not _REMARK.match(text) and bool(re.match(
         r"^(?:back |on |over |then |next )?(?:to |into |onto |in |at |on |with )?(?:the |my |your )?\w+(?: \w+)?$",
         text))
 
@@ -304,7 +308,7 @@ _QUOTE = re.compile(r"(?<!\w)['\u2018\u2019\"\u201c\u201d]+|['\u2018\u2019\"\u20
 def plain(text: str) -> str:
     """`text` with texting shorthand spelled out, stretched letters said once and a checklist's
     numbers said as order words ("first", "then")."""
-    text = in_english(text)  # "prende el projector", "projector band karo" (text tests v69, v68)
+    text = in_english(words_found(text))  # "prende el projector", "projector band karo" (text tests v69, v68)
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _UR_ARE.sub("you're", _STRETCHED.sub(r"\1", text)))
     text = from_texting(text)  # "… anna you can hang up now", "need you in the bathroom" (text test v118)
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
@@ -315,6 +319,7 @@ def plain(text: str) -> str:
     text = _COIL.sub(r"\1 the call", text)  # "finish the coil now": the call, misheard
     text = _DOCK_TOP.sub("the doctor", text)  # "call the dock top": the doctor, misheard
     text = _LET_GO.sub(r"end the call with \1", text)  # "Let Anna go now": the call, ended (text test v119)
+    text = _FINISH_WITH.sub(r"end the call with \1", text)  # "Finish with Anna now, …" (text test v120)
     # "Put the, um, the picture thing on": one clause (text test v38)
     text = _HESITATION.sub(lambda m: m.group(1) or m.group(2), text)
     text = _THATS_WHERE.sub(r"\1 is where", text)  # "The bedroom, that's where I need you": one clause
@@ -339,6 +344,9 @@ _COIL = re.compile(r"\b(hang up|finish|end|stop|close|cut)\s+(?:the |this |that 
 _DOCK_TOP = re.compile(r"(?<=\bcall )the (?:dock top|dock tor|doc top|dog tor)\b", re.IGNORECASE)  # (audio v108)
 _LET_GO = re.compile(r"\blet ((?-i:[A-Z])[a-z]+|her|him) go\b(?! (?:to|into|in|and|through|out|back)\b)",
                      re.IGNORECASE)
+# told to, at the start of a clause: "Finish with Anna now" ("I'll finish with Anna's photos" is no call)
+_FINISH_WITH = re.compile(r"(?:^|(?<=[,.;:!?] ))(?:finish|wrap (?:it )?up|be done) with "
+                          r"((?-i:[A-Z])[a-z]+|her|him)\b(?!')", re.IGNORECASE)
 _PROJECT_OR = re.compile(r"\b(the|that|your|my|this) project or\b(?=\s+(\w+)|)", re.IGNORECASE)
 _NO_TAG = re.compile(r"(?<=\w),\s*(?:no|tak|ano|prawda|dobrze|dobře|jo)\?", re.IGNORECASE)
 _GO_AHEAD = re.compile(r"\bgo ahead and (?=\w)", re.IGNORECASE)
@@ -378,7 +386,10 @@ LIST_INTRO = re.compile(r"^(?:(?:a few|a couple of|two|three|four|some) )(?:litt
                         r"(?:things|jobs|tasks|errands)(?: for you| to do)?$"
                         # a heading for where to go instead: "Reroute: front door, …" (text test v54)
                         r"|^(?:reroute|redirect|new destination"
-                        r"|(?:a )?new plan|change of plans?|plan b)$", re.IGNORECASE)  # "ok new plan, …" (text v68)
+                        r"|(?:a )?new plan|change of plans?|plan b"  # "ok new plan, …" (text v68)
+                        # "Let's do this: go to the kitchen, …" (text test v122 made it a step)
+                        r"|let'?s do this|here'?s the plan|here'?s what (?:i want|we(?:'ll| will) do|to do))$",
+                        re.IGNORECASE)
 
 # Vague words that end a list of requests ("…, and turn the projector on and stuff"): no step
 VAGUE = re.compile(r"^(?:stuff|things|everything|whatever|all that|and so on|so on|that sort of thing|etc)$",

@@ -76,6 +76,12 @@ class Intent:
                 rest = re.sub(r"^then\b\W*", "", value[go.end():].strip(), flags=re.IGNORECASE)
                 # "The hallway. You go and look"
                 worded.append(f"go to {said[0].lower()}{said[1:]}" + (f" and {rest}" if rest else ""))
+            elif back := _BACK_TO_ROOM.match(value):
+                worded.append(f"go to {back.group(1)}")  # "come back to the living room" went to the dock (v121)
+            elif room := _ROOM_STEP.match(c.text.strip()):  # "First bathroom": a drive to "first bathroom" (v122)
+                worded.append(f"go to the {room.group(1).lower()}")
+            elif _DOCK_STEP.match(value):
+                worded.append("go back to your charging dock")
             elif _LAST_FIRST.search(value) and fragment(_LAST_FIRST.sub("", value)):
                 worded.append(_LAST_FIRST.sub("", value))  # "Living room first": the order is the hint's
             else:
@@ -154,6 +160,15 @@ _NO_PLACE = frozenset({"ready", "steady", "set", "ok", "okay", "right", "well", 
 # a place said alone: one or two words, an article before them at most ("Hallway.", "the front door")
 _PLACE_ALONE = re.compile(r"^(?:(?:the|my) )?[A-Za-z]+(?: (?:room|door|way|hall|dock))?$", re.IGNORECASE)
 # "Living room first": the step as told to the model, the order said by the hint
+# a room to come back to: the model heard "back" as the dock's (text test v121)
+_BACK_TO_ROOM = re.compile(r"^(?:come|go|head|get) back (?:to|into) ((?:the |my |your )?(?:kitchen|living room|bedroom"
+                           r"|bathroom|hallway|front door|lounge|hall))\b", re.IGNORECASE)
+# a room or the dock said alone as a step, as speech that searches for its words says it
+# (after an order word only: a bare "Bedroom" step the model reads well)
+_ROOM_STEP = re.compile(r"^(?:first|then|next|after that),? (?:the |my |your )?(kitchen|living room|bedroom"
+                        r"|bathroom|hallway|front door|lounge|hall)\W*$", re.IGNORECASE)
+_DOCK_STEP = re.compile(r"^(?:(?:first|then|next),? )?(?:home|(?:your )?plug|(?:your )?charging place)\W*$",
+                        re.IGNORECASE)
 _LAST_FIRST = re.compile(r",?\s+first\W*$", re.IGNORECASE)
 # a bare "no" or "sorry" between a request and what puts it right; a request its own words
 # declined ("don't go to the kitchen") is no request a place after it puts right
