@@ -41,3 +41,10 @@ def test_a_texted_message_gets_its_sentences_and_subject_back(said: str, english
 ])
 def test_texted_and_irish_requests_are_read_as_asked(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps
+
+
+def test_an_end_before_a_room_is_speech_to_texts_then() -> None:
+    """Audio test v112: "…, then the front door, …" came out "…, end the front door, …"."""
+    assert read_request("go to the hallway, end the front door, and call Anna.").steps == (
+        "go to the hallway", "the front door", "call Anna")
+    assert read_request("End the call, then the kitchen.").steps == ("End the call", "the kitchen")

@@ -8,6 +8,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.code_switch import in_english
+from robovoice.assistant.misheard import heard_right
 from robovoice.assistant.texting import from_texting
 from robovoice.assistant.word_finding import words_found
 
@@ -313,11 +314,7 @@ def plain(text: str) -> str:
     text = from_texting(text)  # "… anna you can hang up now", "need you in the bathroom" (text test v118)
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
     text = _QUOTE.sub("", text)  # "Step four: 'send the robot to the dock'": the words read out
-    # a "projector" misheard: no "or" between two things, and a command run on after it starts a clause
-    text = _PROJECT_OR.sub(lambda m: f"{m.group(1)} projector" + ("," if m.group(2) in IMPERATIVES else ""), text)
-    text = _ABEG_HEARD.sub("please ", text)  # Nigerian "abeg" (please) as speech-to-text writes it
-    text = _COIL.sub(r"\1 the call", text)  # "finish the coil now": the call, misheard
-    text = _DOCK_TOP.sub("the doctor", text)  # "call the dock top": the doctor, misheard
+    text = heard_right(text, IMPERATIVES)  # "the project or", "finish the coil", "…, end the front door"
     text = _LET_GO.sub(r"end the call with \1", text)  # "Let Anna go now": the call, ended (text test v119)
     text = _FINISH_WITH.sub(r"end the call with \1", text)  # "Finish with Anna now, …" (text test v120)
     # "Put the, um, the picture thing on": one clause (text test v38)
@@ -334,20 +331,11 @@ def plain(text: str) -> str:
 
 
 # … in Polish and Czech too: "…, so first hallway, tak?" ("tak" was read as Scots "take": text test v111)
-# speech-to-text's "the project or" for "the projector" (audio test v104: "Switch off the project or go to
-# the bathroom, then call Anna" was read as one thing or the other, and the drive never made), and its
-# "a bag" for "abeg" (audio test v105: "a bag go to the kitchen." was talk)
-_ABEG_HEARD = re.compile(r"^(?:a bag|a beg|uh beg),?\s+(?=(?:go|come|call|ring|switch|turn|put|take|bring)\b)",
-                         re.IGNORECASE)
-# … and its "coil" for "call" after the words that end one (audio tests v102, v103: "Finish the coil now")
-_COIL = re.compile(r"\b(hang up|finish|end|stop|close|cut)\s+(?:the |this |that )?coil\b", re.IGNORECASE)
-_DOCK_TOP = re.compile(r"(?<=\bcall )the (?:dock top|dock tor|doc top|dog tor)\b", re.IGNORECASE)  # (audio v108)
 _LET_GO = re.compile(r"\blet ((?-i:[A-Z])[a-z]+|her|him) go\b(?! (?:to|into|in|and|through|out|back)\b)",
                      re.IGNORECASE)
 # told to, at the start of a clause: "Finish with Anna now" ("I'll finish with Anna's photos" is no call)
 _FINISH_WITH = re.compile(r"(?:^|(?<=[,.;:!?] ))(?:finish|wrap (?:it )?up|be done) with "
                           r"((?-i:[A-Z])[a-z]+|her|him)\b(?!')", re.IGNORECASE)
-_PROJECT_OR = re.compile(r"\b(the|that|your|my|this) project or\b(?=\s+(\w+)|)", re.IGNORECASE)
 _NO_TAG = re.compile(r"(?<=\w),\s*(?:no|tak|ano|prawda|dobrze|dobře|jo)\?", re.IGNORECASE)
 _GO_AHEAD = re.compile(r"\bgo ahead and (?=\w)", re.IGNORECASE)
 _WAIT_NO = re.compile(r"(?<=[.,!?;\u2026\u2014-]) *wait[,!.\u2026]*\s+"
