@@ -91,3 +91,14 @@ def test_a_corrected_place_is_worded_as_the_drive_without_its_courtesy() -> None
 ])
 def test_here_is_worded_as_where_the_person_said_they_are(text: str, worded: tuple[str, ...]) -> None:
     assert read_request(text).worded_steps == worded
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # audio test v113: "no hallway" with no comma took the hallway back, and "go there" drove to the bathroom
+    ("bathroom, no hallway, hallway, go there.", ("go there",)),
+    ("The kitchen? No. Go to the hallway.", ("Go to the hallway",)),
+])
+def test_a_room_said_alone_then_no_then_another_room_takes_the_first_back(text: str, steps: tuple[str, ...]) -> None:
+    intent = read_request(text)
+    assert intent.steps == steps
+    assert intent.clauses[0].kind is ClauseKind.NEGATED

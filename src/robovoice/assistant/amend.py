@@ -21,6 +21,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.clause_kind import classify
+from robovoice.assistant.dialects import ROOM
 from robovoice.assistant.lexicon import (
     ARTICLES,
     FILLER,
@@ -254,3 +255,21 @@ def actually_only(parts: list[str]) -> list[str]:
         else:
             out.append(part)
     return out
+
+
+def room_put_right(clauses: list[Clause]) -> list[Clause]:
+    """A room said alone, then a bare "no", then words with another room: the first is taken back
+    ("bathroom, no, hallway. Go there.": audio test v113 drove to the bathroom; "The kitchen? No. Go
+    to the hallway.")."""
+    out = list(clauses)
+    for i in range(len(out) - 2):
+        first, no, then = out[i], out[i + 1], out[i + 2]
+        if first.kind is ClauseKind.STATEMENT and _ROOM_ALONE.match(FILLER.sub("", first.text.strip()).strip()) \
+                and _BARE_NO.match(no.text.strip()) \
+                and (m := re.search(ROOM, then.text, re.IGNORECASE)) and m.group(0).lower() not in first.text.lower():
+            out[i] = Clause(first.text, ClauseKind.NEGATED)
+    return out
+
+
+_ROOM_ALONE = re.compile(r"^(?:the |my |your )?" + ROOM + r"\W*$", re.IGNORECASE)
+_BARE_NO = re.compile(r"^(?:no|nope|nah|not that)\W*$", re.IGNORECASE)

@@ -7,7 +7,9 @@ reading only (the model reads the transcript as it came).
 - "coil" for "call" after the words that end one (audio tests v102, v103: "Finish the coil now");
 - "the dock top" for "the doctor" after "call" (audio test v108);
 - "end" for "and" or "then" before a room (audio test v112: "go to the hallway, end the front door,
-  and call Anna" ended no call and never went to the front door): nothing ends a room.
+  and call Anna" ended no call and never went to the front door): nothing ends a room;
+- no comma after a "no" between two rooms (audio test v113: "bathroom, no hallway, hallway, go
+  there" took the hallway back and drove to the bathroom).
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ _ABEG_HEARD = re.compile(r"^(?:a bag|a beg|uh beg),?\s+(?=(?:go|come|call|ring|s
 _COIL = re.compile(r"\b(hang up|finish|end|stop|close|cut)\s+(?:the |this |that )?coil\b", re.IGNORECASE)
 _DOCK_TOP = re.compile(r"(?<=\bcall )the (?:dock top|dock tor|doc top|dog tor)\b", re.IGNORECASE)
 _PROJECT_OR = re.compile(r"\b(the|that|your|my|this) project or\b(?=\s+(\w+)|)", re.IGNORECASE)
+_NO_ROOM = re.compile(r"\b(" + ROOM + r"),?\s+no\s+(?=(?:the |your |my )?" + ROOM + r"\b)", re.IGNORECASE)
 _END_ROOM = re.compile(r"(?<=, )end (?=(?:the |your |my )?" + ROOM + r"\b)", re.IGNORECASE)
 
 
@@ -31,4 +34,4 @@ def heard_right(text: str, imperatives: frozenset[str]) -> str:
     text = _ABEG_HEARD.sub("please ", text)
     text = _COIL.sub(r"\1 the call", text)
     text = _DOCK_TOP.sub("the doctor", text)
-    return _END_ROOM.sub("then ", text)
+    return _NO_ROOM.sub(r"\1, no, ", _END_ROOM.sub("then ", text))

@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.addressee import a_person
-from robovoice.assistant.amend import go_list
+from robovoice.assistant.amend import go_list, room_put_right
 from robovoice.assistant.clause_kind import classify
 from robovoice.assistant.dialects import ROOM
 from robovoice.assistant.lexicon import (
@@ -83,7 +83,7 @@ def settle(clauses: list[Clause], text: str) -> list[Clause]:
                 and _described(said):
             out[i] = Clause(clause.text, ClauseKind.STATEMENT)
     out = _name_list(_said_to(_after_its_name(_past_why(_left_as_is(_counted(_dont_again(out))), text)), text), text)
-    out = _room_then(out, text)
+    out = _room_then(room_put_right(out), text)
     return _either_or(_before_that_last(_before_that_both(_done_too(_own_and(_not_that_but(out), text), text), text),
                                         text), text)
 
