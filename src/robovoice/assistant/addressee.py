@@ -58,6 +58,9 @@ _STILL_ASKING = re.compile(r"^(?:then|and|too|as well|please|now|first|next|afte
 # What is said to the person named ("not you", "don't you touch that", "I'll call you back"):
 # enough to tell a name from an exclamation the robot does not know.
 _LISTEN = re.compile(r"^(?:listen|listen up|look here|guess what|you know what)$", re.IGNORECASE)  # said to them
+# what one tells a person to do some day, later in the sentence that opens with their name
+_YOU_MUST = re.compile(r"^(?:and )?you (?:must|should|have to|'ll have to|will have to|ought to|need to) "
+                       r"(?:come|visit|see|pop round|drop by)\b", re.IGNORECASE)
 _TO_THEM = re.compile(r"^(?:(?:not|don'?t|do not) )?you\b|^i(?:'m|'ll|'ve| am| will| was| have)\b", re.IGNORECASE)
 
 
@@ -106,6 +109,8 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
         return False  # (a spoken stop is always for the robot: it may be what keeps someone safe)
     if _TO_THEM.match(first) or _LISTEN.match(first):  # "Ben, listen, …" (text test v108: during his call)
         return name[0].isupper() or last in _FAMILY
+    if name[0].isupper() and any(_YOU_MUST.match(part.strip()) for part in re.split(r"[,;]", called.group("rest"))[1:]):
+        return True  # "Ben, the kitchen here has been renovated, you must come and see." (text test v123)
     return (last in _FAMILY or called.group("dear") is not None or (robot_called and name[0].isupper())) and (
         first.split()[0].lower() in IMPERATIVES or not fragment(first))
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 import re
 
 from robovoice.assistant.code_switch import in_english
+from robovoice.assistant.formal import as_asked
 from robovoice.assistant.misheard import heard_right
 from robovoice.assistant.texting import from_texting
 from robovoice.assistant.word_finding import words_found
@@ -309,7 +310,7 @@ _QUOTE = re.compile(r"(?<!\w)['\u2018\u2019\"\u201c\u201d]+|['\u2018\u2019\"\u20
 def plain(text: str) -> str:
     """`text` with texting shorthand spelled out, stretched letters said once and a checklist's
     numbers said as order words ("first", "then")."""
-    text = in_english(words_found(text))  # "prende el projector", "projector band karo" (text tests v69, v68)
+    text = in_english(as_asked(words_found(text)))  # "prende el projector", "projector band karo" (v69, v68)
     text = _TEXTED_WORD.sub(lambda m: _TEXTED[m.group(1).lower()], _UR_ARE.sub("you're", _STRETCHED.sub(r"\1", text)))
     text = from_texting(text)  # "… anna you can hang up now", "need you in the bathroom" (text test v118)
     text = _NUMBERED.sub(lambda m: "first " if m.group(1).lower() == "one" else "then ", text)
