@@ -919,7 +919,7 @@ def test_suppositions_kindness_steering_and_habits(text: str, steps: tuple[str, 
 @pytest.mark.parametrize(("text", "steps"), [
     ("You go in the kitchen, I come behind you.", ("You go in the kitchen",)),
     ("Robot, you finish this call now.", ("finish this call now",)),
-    ("Make the projector on, and then you call Ben.", ("Make the projector on", "you call Ben")),
+    ("Make the projector on, and then you call Ben.", ("switch the projector on", "you call Ben")),
     ("You make me laugh.", ()),
     ("You drive like my late husband.", ()),
     ("You always go to the kitchen at night.", ()),

@@ -19,6 +19,7 @@ from robovoice.assistant.german_dutch import from_german_dutch
 from robovoice.assistant.hindi import from_hindi
 from robovoice.assistant.indonesian_thai import from_indonesian_thai
 from robovoice.assistant.italian_greek import from_italian_greek
+from robovoice.assistant.nordic import from_nordic
 from robovoice.assistant.persian import from_persian
 from robovoice.assistant.pidgin import from_pidgin
 from robovoice.assistant.portuguese import from_portuguese
@@ -59,12 +60,13 @@ _COURTESY = rules((
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
     Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Dari, Indonesian, Malay,
-    Thai, Tamil and Malayalam put in English."""
+    Thai, Tamil and Malayalam put in English, and the Nordic languages' turns as English says them."""
     # (Tamil first: Tagalog drops its "po", which Tamil's "Kitchen-ku po" needs)
     text = from_tagalog(from_tamil_malayalam(text))
     text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(text)))))
     text = from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text))))
-    return from_indonesian_thai(from_persian(from_vietnamese_japanese(from_russian_turkish(text))))
+    text = from_indonesian_thai(from_persian(from_vietnamese_japanese(from_russian_turkish(text))))
+    return from_nordic(text)
 
 
 def translated(text: str) -> bool:

@@ -106,7 +106,7 @@ COURTESY = re.compile(
     r"you(?:'d| would) be (?:so |ever so )?(?:kind|good|sweet|a (?:love|dear|darling|star))\b|"
     rf"you(?:'ve| have| get| got)?(?: got)? {_A_MOMENT}|"
     # "if it's not a huge deal, could you …" (text test v69)
-    r"it'?s (?:no|not(?: a| too)?)(?: much| huge| big| great)? (?:trouble|bother|deal|problem|hassle)|"
+    r"it(?:'?s| is) (?:no|not(?: a| too)?)(?: much| huge| big| great)? (?:trouble|bother|deal|problem|hassle)|"
     r"(?:it|that)'?s (?:ok|okay|alright|all right)|possible)",
     re.IGNORECASE)
 # … and this is the order of steps, not a condition ("go to the door and when you get there, …").

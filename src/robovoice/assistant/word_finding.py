@@ -22,7 +22,8 @@ _PART_WORD = re.compile(r"\b(\w{2,})(?:\.{2,}|\u2026|-)\s*(?=(\w+))", re.IGNOREC
 _THING_THEN_STATE = re.compile(r"\b(projector|telly|tv|screen)(?:\s*(?:\.{2,}|\u2026|[.,])\s*)(on|off)"
                                r"(?=\s*[.,!?]|\s*$)", re.IGNORECASE)
 # the call, called by what happens in it
-_STOP_TALKING = re.compile(r"\b(?:stop|end|finish) the (?:talking|chat|chatting|conversation|natter)\b", re.IGNORECASE)
+_STOP_TALKING = re.compile(r"\b(?:stop|end|finish) the (?:talking|chat|chatting|conversation|natter)\b"
+                           r"|\bstop the (?:video )?call\b", re.IGNORECASE)  # "Stop the call with Anna" (v124)
 
 
 def _part_word(match: re.Match[str]) -> str:
