@@ -31,3 +31,13 @@ def test_the_thing_first_is_put_in_english_order(said: str, english: str) -> Non
 ])
 def test_they_are_read_as_the_steps_they_ask(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps
+
+
+@pytest.mark.parametrize(("said", "steps"), [
+    # text test v125: the doctor's title said in lower case; a terse command after "before that"
+    ("End this call now, then doctor Weber call, after that projector on.",
+     ("End this call now", "call doctor Weber", "projector on")),
+    ("Ring Anna, but before that projector on.", ("projector on", "Ring Anna")),
+])
+def test_a_lower_case_title_and_a_terse_command_put_first(said: str, steps: tuple[str, ...]) -> None:
+    assert read_request(said).steps == steps

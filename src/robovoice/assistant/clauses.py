@@ -19,7 +19,8 @@ _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
     r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:[,.!?]|$))"
     # "Call Ben, but before that turn on the projector" (text test v56); not "before that show starts"
     r"|(?<=\bbefore that)\s+(?=(?:" + "|".join(sorted(IMPERATIVES))
-    + r")\s+(?:the|my|your|it|that|this|me|him|her|them|us|on|off|up|down|over|to|into|a|an)\b)",
+    + r")\s+(?:the|my|your|it|that|this|me|him|her|them|us|on|off|up|down|over|to|into|a|an)\b"
+    r"|(?:the |your )?(?:projector|telly|tv|screen) (?:on|off)\b)",  # "… but before that projector on" (v125)
     re.IGNORECASE,
 )
 _LEADING = re.compile(r"^(?:and then|and after that|and afterwards|after that|then|and|but|also)\s+", re.IGNORECASE)

@@ -206,7 +206,7 @@ _NOT_A_PLACE = (r"(?!(?i:i|we|you|they|he|she|it|let's|here|there|off|back|home|
 _PLACE_GO = re.compile(_OPENS + r"((?:the |my |your )?" + _NOT_A_PLACE + r"[a-z]+(?: (?:room|door|dock))?) (?:you )?go"
                        r"(?= (?:instead|first|now|please|quickly|then|too)\b|\s*(?:[,.!?;:\u2026\u2014\u2013-]|$))",
                        re.IGNORECASE)
-_NAME_CALL = re.compile(_OPENS + r"((?:(?:Dr\.?|Doctor|Mr|Mrs|Ms) )?" + _NOT_A_PLACE + r"[A-Z][a-z]+(?:-ssi|-nim)?)"
+_NAME_CALL = re.compile(_OPENS + r"((?:(?i:dr\.?|doctor|mr|mrs|ms) )?" + _NOT_A_PLACE + r"[A-Z][a-z]+(?:-ssi|-nim)?)"
                         r" (?:you )?"
                         r"(call|ring|phone|video call)(?= (?:please|now|first|then)\b|\s*(?:[,.!?;:\u2026]|$))")
 
