@@ -32,7 +32,7 @@ from robovoice.assistant.lexicon import (
     fragment,
     words,
 )
-from robovoice.assistant.order_words import PAUSE, paused
+from robovoice.assistant.order_words import BEFORE_THAT, PAUSE, paused
 from robovoice.assistant.reading import Clause, ClauseKind
 
 # a habit: advice or a routine, not a request for now (a statement that names one stays talk)
@@ -391,4 +391,5 @@ def tag_asks(before: Clause, tag: str) -> bool:
     way = _WAY_TO.match(before.text.strip())  # "Into the bedroom, mate.": a way, said to the robot (text v66)
     urges = re.search(r"\bplease\b|^\s*if you\b", tag, re.IGNORECASE) or HASTE.match(tag.strip()) or way
     return before.kind is ClauseKind.STATEMENT and (fragment(before.text) or bool(way)) and urges is not None \
-        and not LIST_INTRO.match(before.text.strip())  # "Three things, please: …"
+        and not LIST_INTRO.match(before.text.strip()) and not BEFORE_THAT.match(before.text.strip())
+    # ("Three things, please: …"; "Ring Clara, but before that projector off, please.")
