@@ -16,6 +16,7 @@ from robovoice.assistant.nordic import from_nordic
     ("You can lay on the call now.", "You can hang up the call now."),
     ("You shall go to the kitchen.", "please go to the kitchen."),
     ("Ring to Clara, kiitos.", "Ring Clara, thank you."),
+    ("Be so good and drive to the hallway.", "please drive to the hallway."),
     # English as it is
     ("You shall not pass.", "You shall not pass."),
     ("Eventually I will get a new one.", "Eventually I will get a new one."),

@@ -5,7 +5,7 @@ turns of phrase:
 
 - "eventually you could …" is "could you …" (Swedish "eventuellt": possibly), not later;
 - "make the projector on" is "switch it on"; "lay on the call" is "hang up" (Swedish "lägga på");
-- "you shall drive to …" is asked now (Danish and Norwegian "du skal");
+- "you shall drive to …" is asked now (Danish and Norwegian "du skal"), and so is "be so good and …";
 - "then we call Anna" is "then let's call Anna"; "ring to Clara" is "ring Clara".
 
 v124 read "No niin" as a "no", "Jo, you shall …" as said to a person called Jo, "eventually" as
@@ -28,6 +28,7 @@ _RULES = rules((
     (r"\bmake (on|off) the (projector|screen|telly|tv)\b", r"switch \1 the \2"),
     (r"\b(?:lay|put) on the (?:call|phone)\b", "hang up the call"),
     (r"\byou shall (?!not\b|never\b)(?=\w)", "please "),
+    (r"\bbe so (?:good|kind) and (?=\w)", "please "),  # Swedish "var så god och …" (audio test v115)
     (r"\b(then|now|so) we (call|ring|go|drive|switch|turn|make|put|end)\b", r"\1 let's \2"),
     (r"(?<!\ba )(?<!\bthe )\b(ring|phone) to (?=(?-i:[A-Z]))", r"\1 "),  # (not "a call to Ben": a noun)
 ))
