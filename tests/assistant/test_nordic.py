@@ -21,6 +21,7 @@ from robovoice.assistant.nordic import from_nordic
     ("You shall not pass.", "You shall not pass."),
     ("Eventually I will get a new one.", "Eventually I will get a new one."),
     ("Jo, can you help?", "Jo, can you help?"),  # a name too
+    ("And now we go live to the front door of Number Ten.", "And now we go live to the front door of Number Ten."),
 ])
 def test_nordic_turns_are_said_as_english_says_them(said: str, english: str) -> None:
     assert from_nordic(said) == english

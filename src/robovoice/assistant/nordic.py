@@ -29,7 +29,8 @@ _RULES = rules((
     (r"\b(?:lay|put) on the (?:call|phone)\b", "hang up the call"),
     (r"\byou shall (?!not\b|never\b)(?=\w)", "please "),
     (r"\bbe so (?:good|kind) and (?=\w)", "please "),  # Swedish "var så god och …" (audio test v115)
-    (r"\b(then|now|so) we (call|ring|go|drive|switch|turn|make|put|end)\b", r"\1 let's \2"),
+    # (not a drive: "And now we go live to our reporter outside the front door" is the news)
+    (r"\b(then|so) we (call|ring|switch|turn|make|put|end)\b", r"\1 let's \2"),
     (r"(?<!\ba )(?<!\bthe )\b(ring|phone) to (?=(?-i:[A-Z]))", r"\1 "),  # (not "a call to Ben": a noun)
 ))
 
