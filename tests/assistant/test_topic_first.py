@@ -39,6 +39,7 @@ def test_they_are_read_as_the_steps_they_ask(said: str, steps: tuple[str, ...]) 
      ("End this call now", "call doctor Weber", "projector on")),
     ("Ring Anna, but before that projector on.", ("projector on", "Ring Anna")),
     ("Ring Anna, but before that projector on, please.", ("projector on", "Ring Anna")),  # no "before that" step
+    ("call Ben, but before, go to kitchen, please.", ("go to kitchen", "call Ben")),  # a bare "before" (audio v116)
 ])
 def test_a_lower_case_title_and_a_terse_command_put_first(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps

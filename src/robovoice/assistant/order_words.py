@@ -32,8 +32,10 @@ AFTER = re.compile(r"^(?:(?:(?:straight|right|immediately|directly) )?after(?:wa
 THAT_FIRST = re.compile(r"^(?:tell me|let me know)(?: that| it)?(?: first| now| please)*$", re.IGNORECASE)
 # Order words: "before that, …" / "before you ring Clara, …" / "…, but first …", "… first".
 # "… and before all that, come to the living room" (text test v90)
-BEFORE_THAT = re.compile(r"^before (?:that|then|you do that|doing that|you do|you go|anything else|(?:all|any) (?:of )?"
-                         r"(?:that|this)|everything(?: else)?)(?:,? (?:though|tho))?$", re.IGNORECASE)  # (text v112)
+BEFORE_THAT = re.compile(r"^before(?: (?:that|then|you do that|doing that|you do|you go|anything else"
+                         r"|(?:all|any) (?:of )?(?:that|this)|everything(?: else)?))?(?:,? (?:though|tho))?$",
+                         re.IGNORECASE)  # (text v112)
+# (a bare "before": "call Ben, but before, go to kitchen, please", audio test v116)
 _BEFORE_YOU = re.compile(r"^before you (\w+.*)$", re.IGNORECASE)
 URGE = re.compile(r"^(?:(?:ah|oh|aw|och|come),? )?go on(?: then| now| so)?$", re.IGNORECASE)  # "go on so" (v59)
 PAUSE = re.compile(r"^(?:(?:oh|ah|um|er|erm|eh),? )*(?:wait|hang on|hold on)(?:,? (?:wait|hang on|hold on))*$",
