@@ -31,6 +31,8 @@ def test_a_value_said_after_a_correction_word_puts_the_last_request_right(text: 
     ("Call Ben, sorry for the bother.", ("Call Ben",)),
     ("Go to the kitchen, wait by the front door.", ("Go to the kitchen", "wait by the front door")),  # a step
     ("Go to the kitchen... wait, and then the bathroom.", ("Go to the kitchen", "the bathroom")),
+    ("Go to the kitchen. Hang on, call Ben.", ("Go to the kitchen", "call Ben")),  # a request of its own
+    ("Switch the projector on. Wait, the bedroom.", ("Switch the projector on",)),  # no drive to put right
     ("Switch the projector on. Sorry, I'm muddled today.", ("Switch the projector on",)),
     # put right already: only what the "not" names is taken back
     ("Go to the bedroom, then the kitchen, sorry, not the kitchen, I meant the living room.",

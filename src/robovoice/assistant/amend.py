@@ -100,6 +100,8 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
     if (wanted := instead(clauses, part)) is not None:
         return wanted, False
     last, rest = last_request(clauses), marker_rest(part, text)
+    paused = bool(_PAUSED.match(part.strip())) or (pending and bool(clauses) and bool(_PAUSED.match(
+        clauses[-1].text.strip())))
     if last is None:
         return None, False
     if rest == "":
@@ -109,6 +111,8 @@ def amend(clauses: list[Clause], part: str, text: str, pending: bool) -> tuple[l
         said, part = _MARK_AFTER.sub("", said), _MARK_AFTER.sub("", part)
     if not said or not puts_right(said) or repeats(said, clauses[last].text):
         return None, False
+    if paused and not _same_kind(said, clauses[last].text):
+        return None, False  # after a bare "wait": only a place for a drive, a name for a call
     fixed = [Clause(c.text, ClauseKind.NEGATED) if i == last else c for i, c in enumerate(clauses)]
     state = re.fullmatch(r"\W*(on|off)\W*", FILLER.sub("", said), re.IGNORECASE)
     if state and re.search(r"\b(?:on|off)\b", clauses[last].text, re.IGNORECASE):
@@ -255,6 +259,15 @@ def actually_only(parts: list[str]) -> list[str]:
         else:
             out.append(part)
     return out
+
+
+def _same_kind(value: str, request: str) -> bool:
+    """`value` names what `request` asks for: a room for a drive there, a name for a call."""
+    if words(value)[:1] and words(value)[0] in IMPERATIVES:
+        return False  # "…. Hang on, call Ben.": a request of its own
+    if re.search(ROOM, value, re.IGNORECASE):
+        return bool(re.search(ROOM + r"|\b(?:go|drive|head|come|move|pop|nip)\b", request, re.IGNORECASE))
+    return bool(re.search(r"\b(?:call|ring|phone|video|facetime|dial)\b", request, re.IGNORECASE))
 
 
 def room_put_right(clauses: list[Clause]) -> list[Clause]:
