@@ -16,7 +16,8 @@ Rules = tuple[tuple[re.Pattern[str], str], ...]
 
 # the home's rooms, as a pattern: named with no article, as Slavic and signing speakers say them
 # ("once you are in hallway", "Hallway, not living room": text tests v111, v112)
-ROOM = r"(?:kitchen|living room|lounge|bedroom|bathroom|hallway|hall|front door|charging dock)"
+HOME_ROOM = r"(?:kitchen|living room|lounge|bedroom|bathroom|hallway|hall|front door)"  # the rooms, not the dock
+ROOM = r"(?:" + HOME_ROOM + r"|charging dock)"
 
 
 def rules(pairs: Iterable[tuple[str, str]]) -> Rules:

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 from robovoice.assistant.addressee import a_person
+from robovoice.assistant.dialects import HOME_ROOM
 from robovoice.assistant.lexicon import FILLER, IMPERATIVES, fragment, words
 
 
@@ -161,12 +162,12 @@ _NO_PLACE = frozenset({"ready", "steady", "set", "ok", "okay", "right", "well", 
 _PLACE_ALONE = re.compile(r"^(?:(?:the|my) )?[A-Za-z]+(?: (?:room|door|way|hall|dock))?$", re.IGNORECASE)
 # "Living room first": the step as told to the model, the order said by the hint
 # a room to come back to: the model heard "back" as the dock's (text test v121)
-_BACK_TO_ROOM = re.compile(r"^(?:come|go|head|get) back (?:to|into) ((?:the |my |your )?(?:kitchen|living room|bedroom"
-                           r"|bathroom|hallway|front door|lounge|hall))\b", re.IGNORECASE)
+_BACK_TO_ROOM = re.compile(r"^(?:come|go|head|get) back (?:to|into) ((?:the |my |your )?" + HOME_ROOM + r")\b",
+                           re.IGNORECASE)
 # a room or the dock said alone as a step, as speech that searches for its words says it
 # (after an order word only: a bare "Bedroom" step the model reads well)
-_ROOM_STEP = re.compile(r"^(?:first|then|next|after that),? (?:the |my |your )?(kitchen|living room|bedroom"
-                        r"|bathroom|hallway|front door|lounge|hall)\W*$", re.IGNORECASE)
+_ROOM_STEP = re.compile(r"^(?:first|then|next|after that),? (?:the |my |your )?(" + HOME_ROOM + r")\W*$",
+                        re.IGNORECASE)
 _DOCK_STEP = re.compile(r"^(?:(?:first|then|next),? )?(?:home|(?:your )?plug|(?:your )?charging place)\W*$",
                         re.IGNORECASE)
 _LAST_FIRST = re.compile(r",?\s+first\W*$", re.IGNORECASE)
