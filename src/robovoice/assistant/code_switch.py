@@ -13,6 +13,7 @@ import re
 
 from robovoice.assistant.afrikaans import from_afrikaans
 from robovoice.assistant.arabic import from_arabic
+from robovoice.assistant.creole import from_creole
 from robovoice.assistant.dialects import as_standard, rewrite, rules
 from robovoice.assistant.french import from_french
 from robovoice.assistant.german_dutch import from_german_dutch
@@ -60,10 +61,10 @@ _COURTESY = rules((
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
     Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Dari, Indonesian, Malay,
-    Thai, Tamil and Malayalam put in English, and the Nordic languages' turns as English says them."""
+    Thai, Tamil, Malayalam and Creole put in English, and the Nordic languages' turns as English says them."""
     # (Tamil first: Tagalog drops its "po", which Tamil's "Kitchen-ku po" needs)
     text = from_tagalog(from_tamil_malayalam(text))
-    text = from_french(from_afrikaans(from_pidgin(from_swahili(from_hindi(text)))))
+    text = from_french(from_creole(from_afrikaans(from_pidgin(from_swahili(from_hindi(text))))))
     text = from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text))))
     text = from_indonesian_thai(from_persian(from_vietnamese_japanese(from_russian_turkish(text))))
     return from_nordic(text)
@@ -72,8 +73,8 @@ def _other_languages(text: str) -> str:
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
     Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Indonesian,
-    Malay, Thai, Tamil, Malayalam or Spanish words that `in_english` puts in English (a dialect of English is not
-    another language)."""
+    Malay, Thai, Tamil, Malayalam, Creole or Spanish words that `in_english` puts in English (a dialect of English
+    is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 
