@@ -14,8 +14,12 @@ from __future__ import annotations
 import re
 
 _PAUSE = r"\s*(?:\.{2,}|\u2026|\s-\s|\s\u2014\s)\s*"
-# a word, a pause, the same word again: one word ("the... the" is `lexicon._HESITATION`'s)
-_SAID_AGAIN = re.compile(r"\b(\w+)" + _PAUSE + r"(\1)\b", re.IGNORECASE)
+# a word or a few, a pause, the same words again: said once ("the... the" is `lexicon._HESITATION`'s;
+# "I'd like to... I'd like to see Clara's face", text test v127)
+_WORDS = r"\w+(?:['\u2019]\w+)?"
+_SAID_AGAIN = re.compile(rf"\b({_WORDS}(?:\s+{_WORDS}){{0,3}})" + _PAUSE + r"(\1)\b", re.IGNORECASE)
+# a verb said again after a comma: "Go, go to the bathroom" (text test v127) is one "go"
+_VERB_AGAIN = re.compile(r"\b(go|come|call|ring|switch|turn|put|get|take|hang|end)\s*,\s*(\1)\b", re.IGNORECASE)
 # a part of a word, a pause, the word it starts: "pro... projector", "ki... kitchen"
 _PART_WORD = re.compile(r"\b(\w{2,})(?:\.{2,}|\u2026|-)\s*(?=(\w+))", re.IGNORECASE)
 # a thing named, a pause, its state ending the clause: "the projector... on", "Projector. On."
@@ -34,7 +38,7 @@ def _part_word(match: re.Match[str]) -> str:
 
 def words_found(text: str) -> str:
     """`text` with each word searched for said once, as found."""
-    text = _SAID_AGAIN.sub(r"\2", text)
+    text = _VERB_AGAIN.sub(r"\1", _SAID_AGAIN.sub(r"\2", text))
     text = _PART_WORD.sub(_part_word, text)
     text = _THING_THEN_STATE.sub(lambda m: f"{m.group(1)} {m.group(2).lower()}", text)
     return _STOP_TALKING.sub("end the call", text)
