@@ -1516,3 +1516,17 @@ def test_a_room_to_come_back_to_is_worded_as_a_drive_there() -> None:
     intent = read_request("After you check the front door, come back to the living room, okay?")
     assert intent.worded_steps == ("check the front door", "go to the living room")
     assert read_request("Come back to your dock.").worded_steps == ("Come back to your dock",)
+
+
+@pytest.mark.parametrize(("said", "steps"), [
+    # text test v126-v128: an ellipsis character ends a clause; "see … if" is whether; a carer
+    # passes on a wish; the robot watched is no request; "forget that" with its comma lost
+    ("I'm so tired\u2026 take me to the bedroom.", ("take me to the bedroom",)),
+    ("Go look in the hallway if the door is shut.", ("Go look in the hallway if the door is shut",)),
+    ("She'd like you to ring Ben.", ("She'd like you to ring Ben",)),
+    ("He'd like the projector turned off.", ("He'd like the projector turned off",)),
+    ("Look at the robot going into the kitchen by itself.", ()),
+    ("Go to the front door, forget that I'll get it myself.", ()),
+])
+def test_fiftieth_session_readings(said: str, steps: tuple[str, ...]) -> None:
+    assert read_request(said).steps == steps

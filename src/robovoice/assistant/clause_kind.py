@@ -78,11 +78,13 @@ _POLITE = re.compile(
     r"^(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough (?:as )?|as )to\b|"
     # a request passed on for somebody in the room: "Harold wants you to put the projector on",
     # "she wants you in the bedroom" (text test v44, audio test v35)
-    r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|your|our) \w+) (?:wants|needs|would like|'d like) you "
+    r"^(?:(?!i\b|we\b|you\b|it\b|that\b|this\b|what\b|who\b|nobody\b|no one\b)[a-z]+|(?:my|your|our) \w+)"
+    r"(?: (?:wants|needs|would like)|'d like) you "
     r"(?:to\b|(?:in|at|by) the\b)|"
     # … or the thing as they want it: "he wants the projector on first" (text test v53)
-    r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) (?:wants|needs|would like|'d like) "
-    r"(?:the|that|his|her|your) \w+ "
+    r"^(?:(?!i\b|we\b|you\b|it\b|that\b|this\b|what\b|who\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+)"
+    r"(?: (?:wants|needs|would like)|'d like) "
+    r"(?:the|that|his|her|your) \w+ (?:(?:switched|turned|put) )?"  # "He'd like the projector switched off" (v128)
     r"(?:on|off)\b|"
     # … or the place first, told on for someone: "he says the bathroom first, then …" (text test v53)
     r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) (?:says|said|wants) "
@@ -127,8 +129,11 @@ _LOOK = re.compile(r"^(?:have|take) a (?:quick |little |good |proper )?(?:look|p
                    r" (?:in|into|inside|at|round|around|on|over) (?:the|my|our)\b"
                    r"|" + SEE_IF.pattern, re.IGNORECASE)
 # "look how beautiful the projector makes the room": an exclamation, no look asked (text test v116)
-_LOOK_HOW = re.compile(r"^look (?:how|what)\b|^look at (?:that|this|those|these|them|him|her|it)\W*$",
-                       re.IGNORECASE)
+_LOOK_HOW = re.compile(r"^look (?:how|what)\b|^look at (?:that|this|those|these|them|him|her|it)\W*$"
+                       # "Look the little robot la going down the hallway" (text test v126): the robot watched
+                       r"|^(?:look|watch)(?: at)? (?:(?:the|that|this|my) (?:\w+ )?(?:robot|machine|thing)"
+                       r"|it|him|you|that|this)"
+                       r"(?: \w+)? (?:\w+ing|go)\b", re.IGNORECASE)
 # "See me to the front door", "see us out": a request to go along (not "see you later")
 _SEE_OFF = re.compile(r"^see (?:me|us|him|her|them) (?:out|to|off|down|up)\b", re.IGNORECASE)
 # A question tag on its own ("Don't you, Harold?") and a bare "tell it" (the robot) say nothing

@@ -10,11 +10,13 @@ from robovoice.assistant.lexicon import IMPERATIVES, RELATIONS
 
 # Sentence ends, commas/semicolons, and the conjunctions that join requests.
 _SPLIT = re.compile(  # "Dr. Weber" is one name, not two sentences
-    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;]+\s*"
+    r"(?<!\bdr)(?<!\bmr)(?<!\bmrs)(?<!\bms)(?<!\bst)(?<!\bprof)[.!?;\u2026]+\s*"
     r"|,\s*(?:and then\s+|and after that\s+)?"  # ", and then home to the dock": no clause "and" (text test v63)
     r"|\s+(?:and then|and after that|and afterwards|after that|then|and also|and|but)\s+"
     r"|\s+[-\u2013\u2014]+\s+"  # "go to the bedroom - sorry, no, the living room"
     r"|:\s+"  # "three things: go into the lounge, …" (not a time: "half 3:30")
+    # "forget that I go myself": a transcript that lost the comma after the take-back (audio test v117)
+    r"|(?<=\bforget that)\s+(?=(?:i|i'll|i will|we|we'll)\s+(?!said\b|asked\b))"
     # "go to the bathroom before that, switch …": a transcript that lost the full stop
     r"|(?<!\bbut)(?<!\band)\s+(?=before (?:that|then)\s*(?:[,.!?]|$))"
     # "Call Ben, but before that turn on the projector" (text test v56); not "before that show starts"

@@ -153,7 +153,10 @@ BEFORE_YOU_DO = re.compile(r"(?<=\w)\s+before you\s+(\w+ \w.*)$", re.IGNORECASE)
 _LATE_CONDITION = re.compile(r"\s((?:if|when|whenever|in case)\s.+)$", re.IGNORECASE)
 # … but after these, "if" is "whether": "take a picture so I can see if the parcel's there"
 # (and after a bare "what", "what if you gave Clara a ring?" is a suggestion: text test v46)
-_WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sure|^what)$", re.IGNORECASE)
+_WHETHER = re.compile(r"\b(?:see|ask|know|check|wonder|tell me|find out|look|sure|^what)"
+                      # … with where to look between: "Go see in the bedroom if they there" (text test v126)
+                      r"(?:(?<!ask)(?<!know)(?<!sure) (?:in|on|at|by|round|around|inside) (?:the|my|your) \w+"
+                      r"(?: room| door)?)?$", re.IGNORECASE)
 # … and a "when" after these belongs to what the request is for: "sit in the living room so
 # you're ready when I come in" is to be done now (an "if" still puts it off: "ring the doctor so
 # I can talk to her if I fall")
