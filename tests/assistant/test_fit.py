@@ -297,6 +297,8 @@ NAMES = {name: listed_names(spec.description, spec.parameters) for name, spec in
     ("Bring Clara up on the display, would you?", False),  # "display" is the projector's word only
     ("Put the screen on, then ring Anna.", False),  # the screen's clause names nobody
     ("Get the projector on the screen for Anna.", False),  # the projector's own name
+    ("Put her on the screen, Clara I mean.", True),  # "her": someone the utterance names (text test v127)
+    ("Put him on the screen.", False),  # nobody named: "him" is nobody the call lists
 ])
 def test_a_word_two_tools_share_beside_a_value_one_lists_is_that_tools(text: str, claimed: bool) -> None:
     assert claimed_elsewhere(read_request(text), "set_projector_power", {"on": True}, WORDS, NAMES) is claimed

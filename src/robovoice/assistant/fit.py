@@ -243,18 +243,18 @@ def fitting_tools(intent: Intent, declared: Mapping[str, Sequence[str]], but: st
 def claimed_elsewhere(intent: Intent, name: str, arguments: Mapping[str, Any],
                       declared: Mapping[str, Sequence[str]], values: Mapping[str, Collection[str]],
                       said: Collection[str] = ()) -> bool:
-    """Every request clause that says this call's words says only words another tool declares
-    too, beside a value only that tool lists (`values`: each tool's stems naming its listed
-    values, `listed_names`): "get Ben up on the screen" is the call's "screen", not the
-    projector's (text test v25)."""
+    """Every request clause that says this call's words says only words another tool declares too, beside
+    a value only that tool lists (`values`: each tool's stems naming its listed values, `listed_names`):
+    "get Ben up on the screen" is the call's "screen", not the projector's (text test v25)."""
     own = vocabulary(name, declared.get(name, ()), arguments)
     theirs = {tool: [_stems(p) for p in phrases] for tool, phrases in declared.items() if tool != name}
     claimed = False
+    everyone = {stem(w) for w in [*intent.words(), *said]}  # "Put her on the screen, Clara I mean" (text v127)
     for clause in _request_stems(intent, said):
         hits = [phrase for phrase in own if _says(clause, phrase)]
         if not hits:
             continue
-        heard = set(clause) | {stem(w) for w in usual(clause)}  # "the doc on the screen": the doctor (text v66)
+        heard = set(clause) | {stem(w) for w in usual(clause)} | (everyone if {"her", "him"} & set(clause) else set())
         if not any(all(h in stems for h in hits) and heard & set(values.get(tool, ()))
                    for tool, stems in theirs.items()):
             return False  # this clause asks for this call in its own words
