@@ -124,6 +124,8 @@ def test_end_call_before_a_name_after_another_request_is_then_call_again() -> No
     assert restore_then_call("projector on, and end call, Ben, please.", hint) == (
         "projector on, and then call Ben, please.")
     assert restore("go to the kitchen, end call, Dr. Weber.", hint) == "go to the kitchen, then call Dr. Weber."
+    # after a bare "and" (audio test v118: "go to the living room and end call Anna.")
+    assert restore("go to the bedroom and end call Clara.", hint) == "go to the bedroom and then call Clara."
     # the end of a call said whole, a name it cannot call, no call action
     assert restore_then_call("End call, please.", hint) == "End call, please."
     assert restore_then_call("projector on, end the call with Ben.", hint) == "projector on, end the call with Ben."

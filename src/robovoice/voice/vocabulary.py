@@ -152,10 +152,11 @@ def restore_ring(text: str, hint: str) -> str:
 # made, the end of a call that was not running failed). Ending a call says no name that way;
 # after another request and before a name the robot can call, it is the call.
 def restore_then_call(text: str, hint: str) -> str:
-    """`text` with ", (and) end call, <name>" written ", (and) then call <name>"."""
+    """`text` with ", (and) end call, <name>" or " and end call <name>" written "… then call <name>"."""
     if (who := _callable(hint)) is None:
         return text
-    pattern = r"([,;]\s*(?:(?i:and)\s+)?)(?i:end) call,?\s+(" + who + ")" + _AFTER_NAME
+    # (or after a bare "and": "go to the living room and end call Anna", audio test v118)
+    pattern = r"([,;]\s*(?:(?i:and)\s+)?|\s(?i:and)\s+)(?i:end) call,?\s+(" + who + ")" + _AFTER_NAME
     return re.sub(pattern, lambda m: m[1] + "then call " + m[2], text)
 
 
