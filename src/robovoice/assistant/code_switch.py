@@ -20,6 +20,7 @@ from robovoice.assistant.german_dutch import from_german_dutch
 from robovoice.assistant.hindi import from_hindi
 from robovoice.assistant.indonesian_thai import from_indonesian_thai
 from robovoice.assistant.italian_greek import from_italian_greek
+from robovoice.assistant.nepali import from_nepali
 from robovoice.assistant.nordic import from_nordic
 from robovoice.assistant.persian import from_persian
 from robovoice.assistant.pidgin import from_pidgin
@@ -61,9 +62,9 @@ _COURTESY = rules((
 def _other_languages(text: str) -> str:
     """`text` with its Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French, Portuguese, Italian,
     Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Dari, Indonesian, Malay,
-    Thai, Tamil, Malayalam and Creole put in English, and the Nordic languages' turns as English says them."""
+    Thai, Tamil, Malayalam, Creole and Nepali put in English, and the Nordic languages' turns as English says them."""
     # (Tamil first: Tagalog drops its "po", which Tamil's "Kitchen-ku po" needs)
-    text = from_tagalog(from_tamil_malayalam(text))
+    text = from_tagalog(from_tamil_malayalam(from_nepali(text)))
     text = from_french(from_creole(from_afrikaans(from_pidgin(from_swahili(from_hindi(text))))))
     text = from_german_dutch(from_arabic(from_italian_greek(from_portuguese(text))))
     text = from_indonesian_thai(from_persian(from_vietnamese_japanese(from_russian_turkish(text))))
@@ -73,8 +74,8 @@ def _other_languages(text: str) -> str:
 def translated(text: str) -> bool:
     """Whether `text` asks something in Tagalog, Hindi, Urdu, Punjabi, Swahili, Pidgin, Afrikaans, French,
     Portuguese, Italian, Greek, Arabic, German, Dutch, Russian, Turkish, Vietnamese, Japanese, Persian, Indonesian,
-    Malay, Thai, Tamil, Malayalam, Creole or Spanish words that `in_english` puts in English (a dialect of English
-    is not another language)."""
+    Malay, Thai, Tamil, Malayalam, Creole, Nepali or Spanish words that `in_english` puts in English (a dialect of
+    English is not another language)."""
     return _other_languages(text) != text or said_in_spanish(text)
 
 
