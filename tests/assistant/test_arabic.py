@@ -13,6 +13,10 @@ from robovoice.assistant.intent import read_request
     ("Yalla, ring Ben, min fadlik.", "ring Ben, please."),
     ("The kitchen, yalla!", "The kitchen, quickly!"),
     ("Shukran kteer, ya habibti.", "thank you."),
+    ("Yalla, kitchen, habibti.", "go to kitchen."),  # (text test v131)
+    ("Inshallah you can ring Clara now.", "you can ring Clara now."),
+    ("Switch the projector off, khalas.", "Switch the projector off."),
+    ("Khalas, stop!", "enough, stop!"),
     ("Hallway, ya Jarvis.", "Hallway, Jarvis."),
     ("Bukra, ba'dain, halla2.", "tomorrow, later, now."),
     ("Khalas!", "enough!"),
