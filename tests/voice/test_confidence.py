@@ -332,3 +332,15 @@ def test_the_sweep_counts_what_each_rule_turns_away() -> None:
     assert lines["avg_logprob < -0.6"].endswith("command 0/2 []  unintelligible 1/2 ['noise']" + tail)
     assert lines["avg_logprob < -0.5"].endswith("command 1/2 ['short']  unintelligible 1/2 ['noise']" + tail)
     assert lines["mean word probability < 0.3"].endswith("command 1/2 ['short']  unintelligible 1/2 ['noise']" + tail)
+
+
+def test_a_decoder_loop_is_unsure_whatever_its_score() -> None:
+    """Audio test v120: Whisper wrote "stop, stop, wait, wait, …" 22 times for a remark in pink
+    noise, sure of it; the robot, standing still, was stopped. One word six times in a row is
+    the model looping, not speech; three times is how people say it."""
+    check = ConfidenceCheck(min_avg_logprob=-0.6)
+    sure = Confidence((), -0.1, 0.01)
+    loop = "stop, stop, " + ", ".join(["wait"] * 22) + "."
+    assert unsure_reason(Transcript(loop, 3.0, confidence=sure), loop, check) is not None
+    assert unsure_reason(Transcript("Stop, stop, stop!", 1.0, confidence=sure), "Stop, stop, stop!", check) is None
+    assert unsure_reason(Transcript(loop, 3.0, confidence=sure), loop, ConfidenceCheck(None)) is None  # check off

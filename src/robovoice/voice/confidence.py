@@ -60,9 +60,18 @@ def mean_word_probability(confidence: Confidence, text: str) -> float | None:
     return sum(w.probability for w in words) / len(words) if words else None
 
 
+# one word six times in a row or more: the decoder looping on noise, not speech ("stop, stop, wait,
+# wait, wait, …" 22 times for "Hey Jarvis, Doctor Weber is a very kind man, you know." in pink
+# noise, audio test v120, with the hint's stop words: the robot, standing still, was stopped)
+_LOOP = re.compile(r"\b(\w+)\b(?:\W+\1\b){5,}", re.IGNORECASE)
+
+
 def unsure_reason(transcript: Transcript, text: str, check: ConfidenceCheck) -> str | None:
     """Why the command `text` (from `transcript`, wake phrase removed) is too unsure to act
-    on, or None to act. The scores are logged either way (`robovoice -v`)."""
+    on, or None to act. The scores are logged either way (`robovoice -v`). A decoder loop
+    (`_LOOP`) is unsure whatever its scores, while the check is on."""
+    if check.min_avg_logprob is not None and _LOOP.search(text):
+        return "unsure: one word over and over (the speech-to-text model looping)"
     if transcript.confidence is None:
         return None
     scores = transcript.confidence
