@@ -81,12 +81,13 @@ from robovoice.assistant.order_words import (
     URGE,
     before_you,
     only_paused,
+    past_a_wait,
     paused,
     puts_off,
     same_step,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
-from robovoice.assistant.said_order import arrival_first
+from robovoice.assistant.said_order import arrival_first, first_both
 
 
 def read_request(text: str, *, answering: bool = False) -> Intent:
@@ -104,7 +105,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     amending = False  # right after a bare "sorry" or "I mean" (amend)
     noted = False  # after "Note for Dad:": what follows is for somebody else
     text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
-    for part in actually_only(arrival_first(split_clauses(text))):
+    for part in actually_only(arrival_first(first_both(split_clauses(text), text))):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if (at := _last_said(clauses)) is not None and tag_asks(clauses[at], part):  # "Bedroom, please."
                 clauses[at] = Clause(clauses[at].text, ClauseKind.REQUEST)  # "would you ever …, please?"
@@ -234,7 +235,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
             clauses[-1] = Clause(clauses[-1].text, ClauseKind.REQUEST)  # "Bedroom. Now, please."
         if answering and kind is ClauseKind.STATEMENT:
             kind = ClauseKind.REQUEST
-        previous = clauses[at] if (at := _last_said(clauses)) is not None else None
+        previous = clauses[at] if (at := past_a_wait(clauses, _last_said(clauses))) is not None else None
         ordered = bool(ORDERED_FRAGMENT.match(re.sub(r"[^\w' ]", "", part).strip())) or (  # "first the kitchen"
             clauses and FIRST_ALONE.match(clauses[-1].text.strip()) is not None and fragment(part))  # "First, the …"
         you_do = YOU_DO.match(bare) and IMPERATIVE_SHAPE.match(bare[4:])  # "…, then you go to the hallway"

@@ -8,6 +8,7 @@ import re
 from collections.abc import Iterable
 
 from robovoice.assistant.lexicon import FILLER, IMPERATIVES, LATER_ONLY, words
+from robovoice.assistant.reading import Clause, ClauseKind
 
 # "…, and once you've got her, …": the step before done, then what follows
 HIM_THEN = re.compile(r"^\s+(?:him|her|them|it)\s+(\w.*)$", re.IGNORECASE)
@@ -107,3 +108,16 @@ def puts_off(said: str, after: Iterable[str]) -> bool:
     return bool(NOT_BEFORE.match(said.strip())) or (bool(LATER_ONLY.match(said.strip())) and all(
         NOT_BEFORE.match(a.strip()) or LATER_ONLY.match(a.strip()) or paused(a) or set(words(a)) <= _WHEN
         for a in after))
+
+
+# a wait after a request, as part of it: "Go to hallway and wait little bit; after that, front door"
+# (text test v129: "front door" was read as talk)
+_AWHILE = re.compile(r"^(?:and |then )?(?:wait|stay)(?: there| here)?(?: for)?(?: a| one)?(?: little| wee| small)?"
+                     r" (?:bit|while|moment|minute|second|sec)s?(?: there| here)?$", re.IGNORECASE)
+
+
+def past_a_wait(clauses: list[Clause], at: int | None) -> int | None:
+    """The clause at `at`, or the request before it where that is a wait a while after it."""
+    if at and _AWHILE.match(FILLER.sub("", clauses[at].text).strip()) and clauses[at - 1].kind is ClauseKind.REQUEST:
+        return at - 1
+    return at

@@ -1,7 +1,8 @@
 """Steps said in one breath, cut where the order they are done in is said (`intent.read_request`
 reads each part): "give Anna a ring once you've made it to the bedroom", "switch the projector
 off before you head to the bedroom", "call Clara after you put the projector on", "once you're
-in the kitchen video call Clara"."""
+in the kitchen video call Clara"; and two steps joined by "and" after a "but first" before both
+("call the doctor, but first go to the living room and switch the projector on")."""
 
 from __future__ import annotations
 
@@ -20,6 +21,23 @@ _ONCE_IN = re.compile(r"^((?:once|as soon as) you(?:'re| are) (?:in|at|by|inside
 
 
 _COURTESY_LAST = re.compile(r"(?:,?\s+(?:please|thanks|thank you))+\s*$", re.IGNORECASE)
+
+
+def first_both(parts: list[str], text: str) -> list[str]:
+    """A request, then "but first A and B": A and B, then the request (text tests v129 and v130:
+    "I'm wanting to speak to Doctor Weber, but first go to the bedroom and switch the projector on"
+    put only A first, and the call before B). Only two requests joined by a bare "and" as said."""
+    for i in range(1, len(parts) - 1):
+        first, then = parts[i].strip(), parts[i + 1].strip()
+        if _FIRST_OPENS.match(first) and re.search(re.escape(first) + r"\s+and\s+" + re.escape(then), text) \
+                and not _ORDERED.search(then) and all(classify(p) is ClauseKind.REQUEST
+                                                      for p in (parts[i - 1], first, then)):
+            return [*parts[:i - 1], parts[i], parts[i + 1], parts[i - 1], *parts[i + 2:]]
+    return parts
+
+
+_FIRST_OPENS = re.compile(r"^(?:but |and |so )?first\b", re.IGNORECASE)
+_ORDERED = re.compile(r"\b(?:first|then|after|afterwards|before|once|when)\b", re.IGNORECASE)
 
 
 def arrival_first(parts: list[str]) -> list[str]:
