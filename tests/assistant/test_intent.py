@@ -1527,6 +1527,19 @@ def test_a_room_to_come_back_to_is_worded_as_a_drive_there() -> None:
     ("He'd like the projector turned off.", ("He'd like the projector turned off",)),
     ("Look at the robot going into the kitchen by itself.", ()),
     ("Go to the front door, forget that I'll get it myself.", ()),
+    # text test v129-v131: a carry-on said with "you"; "let it go"; an "or no?" tag asks; an
+    # attention-getter; "I'm wanting to"; "but first A and B"; a wait after a request; "maybe you …?"
+    ("Don't you stop now, you're doing fine.", ()),
+    ("Let it go, don't stop.", ()),
+    ("You can play films on the wall, or no?", ()),
+    ("Can you ring folk on the telly?", ()),
+    ("Listen carefully. Go to the kitchen.", ("Go to the kitchen",)),
+    ("I'm wanting to talk to Anna.", ("I'm wanting to talk to Anna",)),
+    ("Ring Ben, but first come to the bedroom and switch the projector off.",
+     ("first come to the bedroom", "switch the projector off", "Ring Ben")),
+    ("Go to the kitchen and wait a bit; after that, the hallway.", ("Go to the kitchen", "the hallway")),
+    ("Maybe you pop over to the hallway?", ("Maybe you pop over to the hallway",)),
+    ("Switch off the projector also.", ("Switch off the projector also",)),
 ])
 def test_fiftieth_session_readings(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps

@@ -65,6 +65,8 @@ _POLITE = re.compile(
     r"^i (?:really )?(?:want|need|wish)\b(?! (?:(?:my|our) \w+|(?!you\b|it\b|this\b|that\b|the\b|a\b|an\b"
     r"|to\b)\w+) to \w)|"
     r"^i (?:only|just|really) want (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
+    # "I'm wanting to speak to Doctor Weber" (Scots, Irish and Indian English: text test v130)
+    r"^i(?:'m| am) (?:really |just )?(?:wanting|needing) (?:you\b|to (?!know\b|ask\b|check\b|hear\b))|"
     r"^(?:all|what|the one thing) i(?:'d| would)? (?:really )?(?:want|need|like) (?:from you )?is\b|"
     # wishes addressed to the robot: "it'd be lovely if you could…", "I wonder if you could…"
     r"^it(?:'d| would)? be (?:\w+ )?(?:lovely|nice|great|good|helpful|wonderful|kind|grand) if you\b|"
@@ -95,7 +97,10 @@ _POLITE = re.compile(
     r"^it'?s (?:straight )?(?:back|off|home) (?:to|into|onto|on to) (?:your\b|(?:the|your) [\w ]+ (?:for|with) you\b)|"
     r"^might you\b|^(?:is there )?any chance (?:you(?:'d| could| would| can| might| will)?|of you)\b|"
     r"^(?:may|might|can|could) i (?:(?:ask|trouble|bother) you (?:to|for)|"
-    r"(?:get|have) you to (?!myself|me\b)\w+)\b|^(?:perhaps|maybe) you might\b"
+    r"(?:get|have) you to (?!myself|me\b)\w+)\b"
+    # "maybe you drive over to the bathroom?": a suggestion (text test v131)
+    r"|^(?:perhaps|maybe) you (?:just )?(?:go|drive|come|head|pop|nip|call|ring|phone|switch|turn|put|end|hang)\b"
+    r"|^(?:perhaps|maybe) you might\b"
     r"(?! have| be| been)|^would it be (?:\w+ ){0,2}(?:inconvenient|trouble|bother|ok|okay|alright|all right|possible)"
     r"(?: (?:for you )?to| if you)\b|"
     # "would it be an idea to ring Anna?", "it might be a good idea to …", "shall we have the
@@ -109,6 +114,7 @@ _POLITE = re.compile(
 # Calling off what was asked ("never mind", "forget it") asks for nothing new: while the robot
 # moves, the loop lets its stop and cancel tools run anyway (voice roles "stop", "cancel").
 _CALL_OFF = re.compile(r"\b(?:never ?mind|after all|forget (?:it|that|about)|call it off)\b|^leave (?:it|that)$"
+                       r"|^let (?:it|that) go$"  # "Arey, let it go, don't stop, …" (text test v129)
                        r"|^(?:scrap|scratch|ignore|disregard|belay|scrub|abandon|abort|drop) (?:it|that|this|the)"
                        # "Belay that.", "Abandon the trip", "Scrub that run" (text test v63)
                        r"(?: (?:route|trip|drive|journey|plan|idea|order|one|run|errand|outing))?$"
@@ -144,7 +150,9 @@ _ASIDE = re.compile(r"^(?:(?:do|does|did|is|are|was|were|can|could|would|will|ha
                     r"|^(?:look|see) at (?:it|him|her|that thing|the robot|the wee thing)\b(?! and\b)"
                     # a question announced: "Tell me one thing, can that projector …?" (text test v121)
                     r"|^(?:tell me|let me ask(?: you)?|answer me|may i ask(?: you)?) (?:one thing|something|a thing"
-                    r"|this|one question|a question)$", re.IGNORECASE)
+                    r"|this|one question|a question)$"
+                    # an attention-getter: "Listen carefully. Go to bedroom, …" (text test v129)
+                    r"|^listen(?: (?:carefully|closely|up|here|to me|now|well))*$", re.IGNORECASE)
 # "You drive in the kitchen", "Robot, you finish this call now": a request in the present
 # tense, as a speaker of another first language says it (text test v49), for the robot's own
 # actions (not "you make me laugh", "you drive like my husband", "you always go there")
@@ -198,7 +206,7 @@ _COURSE = re.compile(r"^(?:set|shape|plot|lay|steer) (?:a |your |our )?course (?
 _ON_OFF_WITH = re.compile(r"^(?:on|off) with (?:the|that|your|this|my) \w+"
                           r"|^(?:on|off) (?:the|that|your|this|my) (?:projector|telly|tv|television|screen|lamp"
                           r"|light)s?"
-                          r"(?: (?:so|then|and|please|now|for)\b|$)", re.IGNORECASE)
+                          r"(?: (?:so|then|and|please|now|for|also|too|as well)\b|$)", re.IGNORECASE)  # "… also" (v129)
 # a thing switched, said first: "projector on for my drama" (text test v105: no step)
 _SWITCHED = re.compile(r"^(?:the |that |your |my )?(?:projector|telly|tv|television|screen)s? (?:on|off)\b"
                        r"(?! (?:the|a|my|your|its|this|that|these|those)\b)", re.IGNORECASE)  # "… on this thing is …"
@@ -241,7 +249,7 @@ def classify(clause: str) -> ClauseKind:
             or _LEFT_TO_IT.match(lowered) or _MANNER_ONLY.match(lowered) or _LET_ME.match(lowered) \
             or _LOOK_HOW.match(lowered):
         return ClauseKind.STATEMENT  # (text test v48: "…, so stop worrying." stopped the robot)
-    if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)"
+    if STOP.search(lowered) and not re.search(r"\b(?:(?:don'?t|do not|never|no need to|needn'?t|not)(?: you)?"
                                                # "I don't want you to stop" (text test v59)
                                                r"(?: (?:want|need|mean|ask|tell|have|has)\w* (?:you )?to)?"
                                                r"|(?!you\b)\w+ "

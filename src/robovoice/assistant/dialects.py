@@ -49,6 +49,9 @@ _PARTICLE = re.compile(r"\s*,?\s*\b(?:lah|leh(?! (?:we|me|us)\b)|lor|hor|meh|sia
 _CAN_OR_NOT = re.compile(r"(^|[.!?\u2026,]\s*)(?:you )?([^.!?\u2026,]+?),?\s+can (?:or )?(?:not|anot)\b",
                          re.IGNORECASE)
 _GOT_OR_NOT = re.compile(r"\bgot ([^,.!?\u2026]+?) or not\b", re.IGNORECASE)
+# "you can show films on the wall, or no?": whether it can, asked with a tag, as Nepali and Hindi ask (text test v129)
+_YOU_CAN_OR_NO = re.compile(r"(^|[.!?\u2026,]\s*)you (can|could) ([^.!?\u2026,]+?),?\s+or (?:no|not)\b"
+                            r"(?=\s*(?:[?.!]|$))", re.IGNORECASE)
 _GO_ROOM = re.compile(r"\b(go|come) (toilet|kitchen|bedroom|bathroom|hallway|living room)\b", re.IGNORECASE)
 
 
@@ -252,7 +255,7 @@ def as_standard(text: str) -> str:
     text = _GO_ROOM.sub(r"\1 to the \2", _GOT_OR_NOT.sub(r"if there is \1", _PARTICLE.sub("", text)))
     text = _PLACE_YOU_GO.sub(lambda m: f"go {'back ' if m.group(1) else ''}{m.group(2)} {m.group(3)}",
                              _AND_AFTER_YOU.sub(", and then you ", text))
-    text = _CAN_OR_NOT.sub(r"\1can you \2", _object_first(text))
+    text = _CAN_OR_NOT.sub(r"\1can you \2", _YOU_CAN_OR_NO.sub(r"\1are you able to \3", _object_first(text)))
     text = rewrite(rewrite(_scots(_maltese(text)), _YORKSHIRE), _PATOIS)  # Patois before the dropped g: "an'"
     text = _MIGHT_COULD.sub(lambda m: f"{m.group(1) or ''}{m.group(2)} you", _DROPPED_G.sub(r"\1g", text))
     text = _OPEN_AFTER.sub(lambda m: f"turn {'on' if m.group(2).lower() == 'open' else 'off'} the {m.group(1)}", text)

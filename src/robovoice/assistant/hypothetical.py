@@ -28,7 +28,7 @@ _ABILITY = re.compile(
 )
 # "can you …?" asks about an ability when its object is generic ("a projector", "video calls", "people").
 _CAN_GENERIC = re.compile(
-    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|anyone|anybody|things|stuff|video calls|calls|projectors)\b"
+    r"^(?:can|could) you \w+(?: \w+)? (?:a|an|people|folks?|anyone|anybody|things|stuff|video calls|calls|projectors)\b"
     r"|^(?:can|could) you \w+ (?:films?|movies?|videos|pictures|photos|music)\b",  # "… show film?" (text test v114)
     re.IGNORECASE,
 )
