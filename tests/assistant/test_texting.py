@@ -48,3 +48,6 @@ def test_an_end_before_a_room_is_speech_to_texts_then() -> None:
     assert read_request("go to the hallway, end the front door, and call Anna.").steps == (
         "go to the hallway", "the front door", "call Anna")
     assert read_request("End the call, then the kitchen.").steps == ("End the call", "the kitchen")
+    # "head for the hallway" as "end for the hallway" (audio test v121)
+    assert read_request("Switch the projector off, and end for the bedroom.").steps == (
+        "Switch the projector off", "head for the bedroom")

@@ -8,6 +8,7 @@ reading only (the model reads the transcript as it came).
 - "the dock top" for "the doctor" after "call" (audio test v108);
 - "end" for "and" or "then" before a room (audio test v112: "go to the hallway, end the front door,
   and call Anna" ended no call and never went to the front door): nothing ends a room;
+- "end for the hallway" for "head for the hallway" (audio test v121: the drive was never made);
 - no comma after a "no" between two rooms (audio test v113: "bathroom, no hallway, hallway, go
   there" took the hallway back and drove to the bathroom).
 """
@@ -25,6 +26,7 @@ _DOCK_TOP = re.compile(r"(?<=\bcall )the (?:dock top|dock tor|doc top|dog tor)\b
 _PROJECT_OR = re.compile(r"\b(the|that|your|my|this) project or\b(?=\s+(\w+)|)", re.IGNORECASE)
 _NO_ROOM = re.compile(r"\b(" + ROOM + r"),?\s+no\s+(?=(?:the |your |my )?" + ROOM + r"\b)", re.IGNORECASE)
 _END_ROOM = re.compile(r"(?<=, )end (?=(?:the |your |my )?" + ROOM + r"\b)", re.IGNORECASE)
+_END_FOR = re.compile(r"\bend (?=(?:for|towards?) (?:the |your |my )?" + ROOM + r"\b)", re.IGNORECASE)
 
 
 def heard_right(text: str, imperatives: frozenset[str]) -> str:
@@ -34,4 +36,5 @@ def heard_right(text: str, imperatives: frozenset[str]) -> str:
     text = _ABEG_HEARD.sub("please ", text)
     text = _COIL.sub(r"\1 the call", text)
     text = _DOCK_TOP.sub("the doctor", text)
+    text = _END_FOR.sub("head ", text)
     return _NO_ROOM.sub(r"\1, no, ", _END_ROOM.sub("then ", text))
