@@ -344,3 +344,5 @@ def test_a_decoder_loop_is_unsure_whatever_its_score() -> None:
     assert unsure_reason(Transcript(loop, 3.0, confidence=sure), loop, check) is not None
     assert unsure_reason(Transcript("Stop, stop, stop!", 1.0, confidence=sure), "Stop, stop, stop!", check) is None
     assert unsure_reason(Transcript(loop, 3.0, confidence=sure), loop, ConfidenceCheck(None)) is None  # check off
+    hang_up = ", ".join(["hang up"] * 14) + "."  # audio test v121: two words looping
+    assert unsure_reason(Transcript(hang_up, 3.0, confidence=sure), hang_up, check) is not None

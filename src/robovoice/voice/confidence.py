@@ -60,10 +60,10 @@ def mean_word_probability(confidence: Confidence, text: str) -> float | None:
     return sum(w.probability for w in words) / len(words) if words else None
 
 
-# one word six times in a row or more: the decoder looping on noise, not speech ("stop, stop, wait,
+# one word (or two or three) six times in a row or more: the decoder looping on noise, not speech ("stop, stop, wait,
 # wait, wait, …" 22 times for "Hey Jarvis, Doctor Weber is a very kind man, you know." in pink
 # noise, audio test v120, with the hint's stop words: the robot, standing still, was stopped)
-_LOOP = re.compile(r"\b(\w+)\b(?:\W+\1\b){5,}", re.IGNORECASE)
+_LOOP = re.compile(r"\b(\w+(?:\W+\w+){0,2})\b(?:\W+\1\b){5,}", re.IGNORECASE)  # "hang up, …" 14 times (v121)
 
 
 def unsure_reason(transcript: Transcript, text: str, check: ConfidenceCheck) -> str | None:
