@@ -122,3 +122,16 @@ def test_what_the_first_runs_of_v84_and_v85_missed_is_read(text: str, steps: tup
 ])
 def test_what_the_first_runs_of_v86_and_v87_missed_is_read(text: str, steps: tuple[str, ...]) -> None:
     assert tuple(read_request(text).worded_steps) == steps
+
+
+@pytest.mark.parametrize(("said", "steps"), [
+    # Gujarati, which shares most of Hindustani's turns (text test v132); made up here
+    ("Kitchen ma jao, beta.", ("go to the Kitchen",)),
+    ("Anna ne video call karo.", ("call Anna",)),
+    ("Bedroom ma jaine ubho re, I am coming.", ("go to the Bedroom",)),
+    ("Aavjo, hang up now. Then projector bandh.", ("hang up now", "projector off")),
+    ("Pehla hallway, pachhi kitchen.", ("go to the hallway", "kitchen")),
+    ("Now kitchen, then the bedroom.", ("Now kitchen", "the bedroom")),
+])
+def test_gujarati_is_read_as_english_says_it(said: str, steps: tuple[str, ...]) -> None:
+    assert read_request(said).worded_steps == steps

@@ -28,6 +28,7 @@ CONTACTS = [{"name": "Anna", "relation": "daughter"}, {"name": "Ben", "relation"
         ("Tito Ben", "Ben"), ("Ate Clara", "Clara"), ("Doc Weber", "Dr. Weber"), ("Anna po", "Anna"),  # (text v78)
         ("Mommy Anna", "Anna"),  # (text v80)
         ("Clara-ssi", "Clara"), ("Ben samchon", "Ben"), ("Ben samchon, jebal", "Ben"),  # Korean (text v105)
+        ("Clara-ben", "Clara"), ("Anna-behn", "Anna"),  # Gujarati's sister, joined to the name (text v132)
     ],
 )
 def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
@@ -37,7 +38,8 @@ def test_contacts_are_matched_tolerantly(text: str, name: str) -> None:
 
 
 @pytest.mark.parametrize("text", ["Bob", "Annabel", "Dr. Miller", "dr", "", "mum", "Weber Anna", "beta", "Bob ji",
-                                  "Sir Bob", "sir", "my son's friend Tom", "Anna and Ben"])
+                                  "Sir Bob", "sir", "my son's friend Tom", "Anna and Ben",
+                                  "Anna Ben"])
 def test_unknown_contacts_are_not_guessed(text: str) -> None:
     assert find_contact(text) is None
 

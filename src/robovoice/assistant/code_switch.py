@@ -46,7 +46,7 @@ _COURTESY = rules((
      r"|(?<!\w)(?:будь ласка|пожалуйста|прошу)(?!\w)", "please"),
     (r"\b(?:dzi[eę]kuj[eę](?: bardzo)?|mul[țt]umesc|xie ?xie|do ?je|dor ?je|多謝|谢谢)\b"
      r"|(?<!\w)(?:дякую|спасибо)(?!\w)", "thank you"),
-    (r"\b(?:kuai (?:yi )?dian|faai di)\b", "quickly"),
+    (r"\b(?:kuai (?:yi )?dian|faai di)\b", "quickly"), (r"\bpole,? pole\b", "slowly"),  # (Swahili, text v132)
     (r"\s*,?\s*\b(?:hao ma|hou m hou|hai mai|hai m hai|ho ma)\b(?=\s*[?.!]|$)", ""),  # tags: ok?, right?
     # Cantonese "no need" and "in a while" (text test v115: "Go charge? Mh sai, …" went to charge)
     (r"\b(?:mh? sai|唔使)\b", "no need"), (r"\b(?:yat (?:j|z)an sin|dang (?:yat )?(?:j|z)an|一陣先|等陣)\b", "later"),

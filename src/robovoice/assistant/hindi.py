@@ -7,7 +7,9 @@ Hindustani puts the verb last ("Anna ko call karo": Anna-to call do), so each ru
 thing, then the verb, and writes the English request verb first. A negation ("mat", "na",
 "nahin") said before a verb makes its clause "don't …"; "… sakte ho?" makes it "can you …?".
 Nothing is rewritten unless a word only Hindustani has was said (`_MARKER`): "to", "par", "me"
-and "bus" are English words too.
+and "bus" are English words too. Gujarati shares most of it; its postpositions ("kitchen ma jao":
+in, "Ben ne video call karo": to), "jaine" (having gone), "ubho re" (stay) and "saheb" are read
+too (text test v132).
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ _MARKER = re.compile(r"\b(?:karo|kardo|kar\s+(?:do|de|dein|dijiye|dena|lo)|karna
                      r"bulao|ruko|ruk\s+ja\w*|pehle|pahle|pehlan|phir|uske|iske|nahin|nahi|zara|kya|hai|"
                      r"hain|aao|aaja|aa\s+ja|wapas|vapas|abhi|khatam|kaat\w*|bujha\w*|chalu|puttar|"
                      r"wahan|udhar|idhar|sakte|sakti|sakta|sakda|sakdi|sakde|shaam|chal|othon|uthon|jaake|dekho|karne|tashreef|"
-                     r"farmaiye|mudiye|rukiye|jaldi|milaiye|lagaiye|bulaiye|chalaiye|dijiye)\b",
+                     r"farmaiye|mudiye|rukiye|jaldi|milaiye|lagaiye|bulaiye|chalaiye|dijiye|jaine|aavjo|saheb|ubho)\b",
                      re.IGNORECASE)
 # an infinitive said with "hai" is a need ("mujhe bathroom jaana hai": I have to go), a "raha" an
 # ongoing thing ("woh ghar ja rahi hai"): neither asks the robot
@@ -37,6 +39,7 @@ _GIVE = r"(?:\s+(?:do|de|dein|den|dijiye|dijie|dena|diyo|lo|lein|na))?"
 _DO = _asks(r"karo|kardo|karde|karna|karein|karen|kijiye|kari|karin|kareen|farmaiye|farmayen|farmaaiye|kar" + _GIVE)
 # what follows the thing before the verb: a postposition, "bhi" (too), "ek" (a)
 _POST = (r"(?:\s+(?:ko|nu|noo|se|tak|mein|me|main|vich|wich|pe|par|te|wal|val|ki\s+taraf|ke\s+paas|bhi|ek|zara|"
+         r"ma|maa|ne|sudhi|"  # Gujarati
          r"jaldi|abhi|turant|fauran|please))*")
 _PLACE = (r"((?:the\s+)?(?:living room|front door|charging dock|drawing room|"
           r"(?!(?:aa|ja|jaa|chale|chala|chali|wapas|vapas|wahan|yahan|udhar|idhar|and|the|to|go|come|then|arre|"
@@ -45,8 +48,8 @@ _PLACE = (r"((?:the\s+)?(?:living room|front door|charging dock|drawing room|"
 # (what is said of them before is left out: "saath wali Clara", the Clara next door; "meri beti Anna")
 _WHO = (r"(?:(?:saath|bagal|padosi|padosan|meri|mera|mere|apni|apne|apna|wali|wala|vali|vala|beti|beta)\s+)*"
         r"((?:(?:doctor|dr\.?|uncle|aunty|auntie|nani|dadi|nana|dada|didi|bhaiya|chacha|chachi|mama|mami|bua|"
-        r"masi|mausi|phuphi)\s+)?(?!(?:ko|nu|se|bhi|ji|jee)\b)\w+)"
-        r"(?:\s+(?:sahib|saab|sahab|ji|jee|aunty|auntie|uncle|bhaiya|bhai|didi|di|beta|beti|bitiya))*")
+        r"masi|mausi|phuphi)\s+)?(?!(?:ko|nu|se|bhi|ji|jee)\b)\w+(?:-(?:ben|behn|bhai|ji))?)"
+        r"(?:\s+(?:sahib|saab|sahab|saheb|ji|jee|aunty|auntie|uncle|bhaiya|bhai|didi|di|beta|beti|bitiya))*")
 _CALL_NOUN = r"(?:video\s+wala\s+phone|video\s+call|video|phone|call|ring|dial)(?:\s+(?:pe|par))?"
 _CONNECT = _asks(r"milao|mila" + _GIVE + r"|milana|milaiye|lagao|laga" + _GIVE + r"|lagana|lagaiye|bulao|bula" + _GIVE +
                  r"|bulana|bulaiye|la" + _GIVE)
@@ -78,7 +81,10 @@ _RULES = rules((
     (r"\b(?:wahan|wahaan|vahan)\s+(?:jaake|ja\s+ke|jaa\s+ke|jakar)\b", "once you get there,"),
     (r"\b(?:te\s+|aur\s+)?(?:othon|uthon|wahan\s+se)\b", "then"), (r"\b(?:othe|uthe)\b", "there"),
     # "front door pe jaake dekho": go to the front door and look
-    (r"\b" + _PLACE + _POST + r"\s+(?:jaake|jaa\s+ke|ja\s+ke|jakar|jaa\s+kar|jake)\b", r"go to the \1 and"),
+    (r"\b" + _PLACE + _POST + r"\s+(?:jaake|jaa\s+ke|ja\s+ke|jakar|jaa\s+kar|jake|jaine|jai\s+ne)\b",
+     r"go to the \1 and"),
+    (r"\b(?:ubho|ubha|ubhi)\s+(?:re|raho|rahe|rejo)\b", "wait"), (r"\baavjo\b", "bye"),  # Gujarati
+    (r"\b(projector|tv)\s+(?:bandh|band)\b(?!\s+\w)", r"\1 off"), (r"\b(projector|tv)\s+chalu\b(?!\s+\w)", r"\1 on"),
     (r"\b" + _PLACE + _POST + r"\s+check\s+" + _DO + r"\b", r"go and check the \1"),  # "front door check karo"
     (r"\bdekho\b(?=\s*[,!])", "look"),  # "Arre dekho, …": look, (not an errand)
     (r"\b(?:dekho|dekhna|dekh\s+lo|check\s+karo)\b", "check"),

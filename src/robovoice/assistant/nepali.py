@@ -41,7 +41,10 @@ _RULES = rules((
     (r"\b" + _PLACE + r"\s+(?:tira|ma)\s+" + _COME + r"\b", r"come to \1"),
     (r"\b" + _GO + r"\b", "go"), (r"\b" + _COME + r"\b", "come"),
     # order words, and the particles a request ends on
-    (r"\bani(?: pachhi)?\b", "and then"), (r"\bpachhi\b", "later"), (r"\bpahil[ae]\b", "first"),
+    # ("pachhi" before what comes next is then, as in Gujarati: "Pehla bedroom, pachhi kitchen", text v132;
+    # Gujarati's "pehla" is Nepali's "pahila", first)
+    (r"\bani(?: pachhi)?\b", "and then"), (r"\bpachhi\b(?=\s+\w)", "then"), (r"\bpachhi\b", "later"),
+    (r"\b(?:pahil[ae]|pehl[ae])\b", "first"),
     (r"\bchhito\b", "quickly"), (r"\bbistarai\b", "slowly"),
     (r"\s+\b(?:ta|na|hai|ni|la)\b(?=\s*(?:[,.!?\u2026]|$))", ""), (r",?\s*\bhoina\s*\?", "?"),  # "…, hoina?": right?
 ))

@@ -70,6 +70,8 @@ _TITLE = re.compile(r"^(?:dr|doctor|doc|dok|mr|mrs|ms|miss|sir|ma am|maam|madam|
 # … and a Korean honorific or a relation said after the name: "Clara-ssi", "Ben samchon" (text test v105)
 _ENDEARMENT = re.compile(r"\s+(?:beta|ji|didi|bhaiya|bhai|dear|love|darling|sweetie|po|ssi|nim|ya|ah|samchon|samchun"
                          r"|imo|gomo|oppa|unni|eonni|noona|nuna|hyung|hyeong)$")
+# … and Gujarati's "-ben" (sister) joined to a name: "Clara-ben" (text test v132; "Anna Ben" is two names)
+_SISTER = re.compile(r"(?<=\w)-(?:ben|behn|bahen)\b", re.IGNORECASE)
 
 
 def _normalise(text: str) -> str:
@@ -80,7 +82,7 @@ def _normalise(text: str) -> str:
 
 
 def find_contact(text: str) -> Contact | None:
-    key = _normalise(text)
+    key = _normalise(_SISTER.sub("", text))
     candidates = {key, _TITLE.sub("", key), _ENDEARMENT.sub("", key)} - {""}
     found = next((c for c in CONTACTS if candidates & c.keys), None)
     if found is not None:
