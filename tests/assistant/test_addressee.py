@@ -142,3 +142,12 @@ def test_a_lists_heading_said_as_a_sentence_is_no_step() -> None:
 ])
 def test_what_still_asks(text: str, steps: tuple[str, ...]) -> None:
     assert read_request(text).steps == steps
+
+
+@pytest.mark.parametrize(("text", "steps"), [
+    # text test v132: the speaker turns from someone in the room to the robot inside one sentence
+    ("Priya, hold on — no, robot, you go to the hallway, the postman is here.", ("go to the hallway",)),
+    ("Ben, put the kettle on, robot, ring Clara.", ("ring Clara",)),
+])
+def test_a_turn_to_the_robot_inside_a_sentence_is_for_it(text: str, steps: tuple[str, ...]) -> None:
+    assert read_request(text).steps == steps

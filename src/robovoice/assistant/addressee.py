@@ -120,10 +120,16 @@ def _said_to_someone(sentence: str, robot_called: bool) -> bool:
 _YOU_DO = re.compile(rf"(?<!hey )(?<!hi )\b((?:robot|jarvis),?\s+)you\s+(?=(?:{ROBOT_ACTIONS})\b)", re.IGNORECASE)
 
 
+# the speaker turning from someone to the robot inside a sentence: "Hasmukh, wait — no, robot, you go
+# to the front door" (text test v132: all of it was set aside as said to Hasmukh)
+_TURNS_TO_ROBOT = re.compile(r"(?<=[,\u2014\u2013])\s*(?:(?i:no),?\s+)?(?=(?i:robot|jarvis)\s*,)")
+
+
 def set_aside(text: str) -> tuple[str, tuple[str, ...]]:
     """`text` without the sentences said to someone else, and those sentences; a request said
     to the robot by name with "you" ("Robot, you ring Anna") as the request it is."""
-    sentences = _SENTENCE.split(_YOU_DO.sub(r"\1", text.strip()))
+    sentences = [part for sentence in _SENTENCE.split(_YOU_DO.sub(r"\1", text.strip()))
+                 for part in _TURNS_TO_ROBOT.split(sentence) if part.strip()]
     robot_called = any(_ROBOT_CALLED.search(s) for s in sentences)
     kept: list[str] = []
     aside: list[str] = []
