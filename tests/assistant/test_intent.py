@@ -1543,3 +1543,17 @@ def test_a_room_to_come_back_to_is_worded_as_a_drive_there() -> None:
 ])
 def test_fiftieth_session_readings(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps
+
+
+@pytest.mark.parametrize(("said", "steps"), [
+    # text test v133 (grandchildren): a drive said in play; a request passed on; a request's outcome
+    ("You are a rocket and your base is the kitchen, so fly there now!", ("so fly there now",)),
+    ("Nana says ring Clara.", ("Nana says ring Clara",)),
+    ("Go and wait by the front door for Ben, and when he's gone come back to the hallway.",
+     ("Go wait by the front door for Ben", "come back to the hallway")),
+    ("When he's gone, ring Anna.", ()),  # alone, a condition
+    # text test v134: carrying on, with the place the person thinks it is going to
+    ("No, don't stop, keep going to the bedroom.", ()),
+])
+def test_fiftieth_session_readings_round_three(said: str, steps: tuple[str, ...]) -> None:
+    assert read_request(said).steps == steps

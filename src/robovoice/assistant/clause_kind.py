@@ -91,6 +91,9 @@ _POLITE = re.compile(
     # … or the place first, told on for someone: "he says the bathroom first, then …" (text test v53)
     r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) (?:says|said|wants) "
     r"(?:the|my|your) \w+(?: \w+)? (?:first|next|now|please)$|"
+    # … or the request itself, passed on: "Grandpa says call Doctor Weber" (text test v133)
+    r"^(?:(?!i\b|we\b|you\b|it\b|that\b|this\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) says,? (?:please )?"
+    r"(?:call|ring|phone|go|come|switch|turn|put|hang up|end)\b|"
     # "I think it's time we put a call through to Dr. Weber" (text test v52); not "it's time for lunch"
     r"^(?:(?:so|well|and) )?(?:(?:i think|i reckon|i'd say) )?it'?s (?:about |high )?time (?:we|you) (?!were\b)\w+|"
     # "…, then it's back to your berth for a charge" (text test v63); not "it's back to bed for me"
@@ -188,7 +191,7 @@ _WITH_YOU = re.compile(r"^(?:(?:off|back|away|up|down|out|over|on) )*(?:to|into|
                        r"(?:\w+ )?(?:kitchen|room|lounge|bedroom|bathroom|hallway|hall|door|dock|charger|bed)"
                        r" with (?:you|ya|ye)\b", re.IGNORECASE)  # (not "to be honest with you")
 # a place said alone after "now" (a filler before others): "Now the bathroom, and after, the bedroom" (text v102)
-_NOW_PLACE = re.compile(r"^now,? (?:(?:on )?to |into )?(?:the|your) (?:kitchen|living room|lounge|bedroom|bathroom"
+_NOW_PLACE = re.compile(r"^now,? (?:(?:on )?to |into )?(?:(?:the|your) )?(?:kitchen|living room|lounge|bedroom|bathroom"
                         r"|toilet|loo|hallway|hall|front door|door|dock|charger)$", re.IGNORECASE)  # not "now the news"
 # home for its charge, said alone: "…, then home to charge", "then home for a charge" (text test v111)
 # "then sit in the charger" (text test v121): the dock, asked
@@ -223,6 +226,10 @@ _TELLS = frozenset({"i", "we", "he", "she", "they", "my", "our"})
 _ASKS_WITH = frozenset({"now", "then", "for", "else", "much", "many", "far", "long", "come", "so", "about"})
 # Verbs that ask the robot to carry on as it is: no action, unless a place follows ("wait in the hallway").
 _HOLD = frozenset(["stay", "wait", "keep", "carry", "continue", "remain", "hold"])
+# carrying on where it is going, said with the place the person thinks it goes to: "Nah, don't stop,
+# keep going to the kitchen" (text test v134: a drive to the front door was sent to the kitchen)
+# ("carry on to the bedroom" after a drive is the next step: text tests v14, v16, v23)
+_KEEP_GOING = re.compile(r"^keep(?: on)? (?:going|driving|moving|rolling|heading) (?:on )?(?:to|towards|into) ")
 # an unsure opening before a command (not `lexicon._HEDGE`, a hedge said alone after a request)
 _UNSURE = re.compile(r"^(?:i guess|i suppose|i think|maybe|perhaps),?\s+")
 # (or a room with no article, as a second language says it: "wait for us in living room", text test v98)
@@ -278,8 +285,8 @@ def classify(clause: str) -> ClauseKind:
     if first == "do" and ((len(said) > 1 and said[1] in IMPERATIVES)
                           or re.search(r"\b(?:please|kindly)\W*$", said_first, re.I)):
         return ClauseKind.REQUEST  # an emphatic "do go to the bathroom"; "please do one video call"
-    if first in _HOLD and not _PLACE.search(lowered):
-        return ClauseKind.STATEMENT  # "stay here", "keep driving": nothing to do
+    if first in _HOLD and (not _PLACE.search(lowered) or _KEEP_GOING.match(lowered)):
+        return ClauseKind.STATEMENT  # "stay here", "keep driving", "keep going to the kitchen": nothing to do
     if (hedged := words(_UNSURE.sub("", lowered))) and hedged[0] in IMPERATIVES and len(hedged) < len(said):
         return ClauseKind.REQUEST  # "I guess head back to the dock": a command said unsurely (text test v69)
     if first in IMPERATIVES or ((shape := IMPERATIVE_SHAPE.match(lowered)) and not NOT_A_VERB.match(shape.group(1))

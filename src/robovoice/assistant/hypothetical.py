@@ -112,6 +112,18 @@ COURTESY = re.compile(
 # … and this is the order of steps, not a condition ("go to the door and when you get there, …").
 ON_ARRIVAL = re.compile(r"^(?:when|once) you(?:'re| are)? (?:(?:get|arrive)\w*(?: (?:there|in there|back|in|home))?"
                         r"|there|in there|back|in$)\b[\s,]*", re.IGNORECASE)  # "… when you're in" (text test v51)
+# … and so does the outcome of what was asked, after a request ("Go and wait at the front door for
+# Clara, and when she's gone come back to the kitchen": text test v133); alone, a condition
+_GONE = re.compile(r"^(?:when|once|after) (?:she|he|they)(?:'s| has| have|'ve| is| are)? (?:gone|left)\b[\s,]*",
+                   re.IGNORECASE)
+
+
+def arrived(clause: str, asked: bool) -> re.Match[str] | None:
+    """The clause opens on the robot's arrival (`ON_ARRIVAL`), or, where a request was said before
+    it (`asked`), on that request's outcome (`_GONE`)."""
+    return ON_ARRIVAL.match(clause) or (_GONE.match(clause) if asked else None)
+
+
 # … these say what to do first ("once you've checked your battery, come here").
 # (not "when you have a moment", "when you've got a minute": courtesy)
 SEQUENCE = re.compile(r"^(?:only )?(?:once|after|when|as soon as) you(?:'ve| have) "

@@ -35,10 +35,10 @@ from robovoice.assistant.hypothetical import (
     COURTESY,
     EVENT_FIRST,
     JUST_ASKING,
-    ON_ARRIVAL,
     ONCE_THERE,
     PAST_WHEN,
     SEQUENCE,
+    arrived,
     asked_as_question,
     asks_ever,
     conditional,
@@ -210,7 +210,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
                 clauses.append(Clause(part, ClauseKind.STATEMENT))
                 continue
             kind, part = ClauseKind.REQUEST, f"go to {where}"
-        elif arrival := ON_ARRIVAL.match(bare):
+        elif arrival := arrived(bare, any(c.kind is ClauseKind.REQUEST for c in clauses)):
             rest = bare[arrival.end():]
             if not rest or classify(rest) is not ClauseKind.REQUEST:
                 clauses.append(Clause(part, ClauseKind.STATEMENT))  # the steps' order: already theirs

@@ -88,6 +88,7 @@ IMPERATIVES = frozenset({
     "ping", "drop",  # a gadget's words: "ping Ben on video", "drop the call" (text test v54)
     "disconnect",  # "please disconnect this call now" (audio test v40)
     "cut",  # "cut the call now" (text test v68)
+    "fly", "dash",  # a child's drive: "your cave is the bedroom, so fly there" (text test v133)
     "fire",  # "fire the projector up" (text test v82)
     "douse",  # "douse the projector" (text test v63)
     "holler",  # Southern US: "holler at Dr. Weber for me" (text test v71)
