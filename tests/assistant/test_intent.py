@@ -1557,3 +1557,11 @@ def test_fiftieth_session_readings(said: str, steps: tuple[str, ...]) -> None:
 ])
 def test_fiftieth_session_readings_round_three(said: str, steps: tuple[str, ...]) -> None:
     assert read_request(said).steps == steps
+
+
+@pytest.mark.parametrize("said", [
+    "Go to the kitchen after my puja.",  # audio test v123, "after my future" as heard: put off
+    "Switch the projector on after her prayers.",
+])
+def test_after_something_of_the_persons_said_last_puts_the_request_off(said: str) -> None:
+    assert read_request(said).steps == ()

@@ -70,7 +70,9 @@ TAG = re.compile(r"^(?:(?:would|will|could|can|won'?t|wouldn'?t|can'?t) (?:you|y
 LATER = re.compile(
     r"\b(?:later|tomorrow|tonight|this evening|this afternoon|next week|one day|some day|someday|"
     r"in an? (?:hour|minute|while)|"
-    r"in \w+ (?:hours|minutes)|after (?:(?:his|her|my|our|your|their) )?(?:lunch|dinner|breakfast|tea|supper)|until)\b",
+    r"in \w+ (?:hours|minutes)|after (?:(?:his|her|my|our|your|their) )?(?:lunch|dinner|breakfast|tea|supper)|until)\b"
+    # … and after anything of the person's, said last: "Go to the kitchen after my puja" (audio test v123)
+    r"|\bafter (?:his|her|my|our|their) (?!call\b)\w+(?=\s*(?:[.,!?]|$))",
     re.IGNORECASE,
 )
 
