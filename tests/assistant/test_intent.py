@@ -1565,3 +1565,10 @@ def test_fiftieth_session_readings_round_three(said: str, steps: tuple[str, ...]
 ])
 def test_after_something_of_the_persons_said_last_puts_the_request_off(said: str) -> None:
     assert read_request(said).steps == ()
+
+
+def test_once_the_projector_is_on_is_the_switch_then_what_follows() -> None:
+    """Text test v134: "Once the projector's on, ring Anna …" is a state only the robot brings about."""
+    assert read_request("As soon as the projector is on, video call Ben for me.").steps == (
+        "switch the projector on", "video call Ben for me")
+    assert read_request("Once the projector's on, I'll call Anna.").steps == ()  # what the person will do

@@ -87,7 +87,7 @@ from robovoice.assistant.order_words import (
     same_step,
 )
 from robovoice.assistant.reading import Clause, ClauseKind, Intent
-from robovoice.assistant.said_order import arrival_first, first_both
+from robovoice.assistant.said_order import arrival_first, first_both, switched_first
 
 
 def read_request(text: str, *, answering: bool = False) -> Intent:
@@ -105,7 +105,7 @@ def read_request(text: str, *, answering: bool = False) -> Intent:
     amending = False  # right after a bare "sorry" or "I mean" (amend)
     noted = False  # after "Note for Dad:": what follows is for somebody else
     text, to_others = set_aside(plain(text))  # "can u": as said; "Ben, stop that": not to it
-    for part in actually_only(arrival_first(first_both(split_clauses(text), text))):
+    for part in actually_only(arrival_first(first_both(switched_first(split_clauses(text)), text))):
         if TAG.match(part.strip()):  # "…, would you?", "…, dear": part of the clause before it
             if (at := _last_said(clauses)) is not None and tag_asks(clauses[at], part):  # "Bedroom, please."
                 clauses[at] = Clause(clauses[at].text, ClauseKind.REQUEST)  # "would you ever …, please?"
