@@ -1572,3 +1572,9 @@ def test_once_the_projector_is_on_is_the_switch_then_what_follows() -> None:
     assert read_request("As soon as the projector is on, video call Ben for me.").steps == (
         "switch the projector on", "video call Ben for me")
     assert read_request("Once the projector's on, I'll call Anna.").steps == ()  # what the person will do
+
+
+def test_a_question_word_passes_no_request_on() -> None:
+    """"Grandpa says call …" passes a request on (text test v133); "Who says call Ben?" asks who."""
+    assert read_request("Grandpa says call Ben.").asks_action
+    assert not read_request("Who says call Ben?").asks_action

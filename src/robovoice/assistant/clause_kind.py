@@ -45,6 +45,9 @@ _NEGATION = re.compile(
     re.IGNORECASE,
 )
 _MIND = re.compile(r"\bif you (?:don'?t|do not|wouldn'?t|would not) mind\b")  # courtesy, not a "don't"
+# someone named by a plain word, who passes a request on ("Harold wants you to …", "Grandpa says call …");
+# not the speaker, the robot, a thing, or a question word ("Who says call Ben?" asks)
+_SOMEONE = r"(?!i\b|we\b|you\b|it\b|that\b|this\b|what\b|who\b|nobody\b|no one\b)[a-z]+"
 _POLITE = re.compile(
     r"^(?:can|could|would|will|won'?t) you\b|^would you mind\b|^why don'?t you\b|^how about\b|^let'?s\b|"
     r"^gonnae\b(?! no\b)|^time to\b|^(?:off|away) you go\b|^go and\b|^(?:could|can|may) we (?:have|get)\b|"
@@ -80,11 +83,11 @@ _POLITE = re.compile(
     r"^(?:would )?you(?:'d| would)? be (?:so |ever so )?(?:kind|good) (?:enough (?:as )?|as )to\b|"
     # a request passed on for somebody in the room: "Harold wants you to put the projector on",
     # "she wants you in the bedroom" (text test v44, audio test v35)
-    r"^(?:(?!i\b|we\b|you\b|it\b|that\b|this\b|what\b|who\b|nobody\b|no one\b)[a-z]+|(?:my|your|our) \w+)"
+    r"^(?:" + _SOMEONE + r"|(?:my|your|our) \w+)"
     r"(?: (?:wants|needs|would like)|'d like) you "
     r"(?:to\b|(?:in|at|by) the\b)|"
     # … or the thing as they want it: "he wants the projector on first" (text test v53)
-    r"^(?:(?!i\b|we\b|you\b|it\b|that\b|this\b|what\b|who\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+)"
+    r"^(?:" + _SOMEONE + r"|(?:my|our) \w+)"
     r"(?: (?:wants|needs|would like)|'d like) "
     r"(?:the|that|his|her|your) \w+ (?:(?:switched|turned|put) )?"  # "He'd like the projector switched off" (v128)
     r"(?:on|off)\b|"
@@ -92,7 +95,7 @@ _POLITE = re.compile(
     r"^(?:(?!i\b|we\b|you\b|it\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) (?:says|said|wants) "
     r"(?:the|my|your) \w+(?: \w+)? (?:first|next|now|please)$|"
     # … or the request itself, passed on: "Grandpa says call Doctor Weber" (text test v133)
-    r"^(?:(?!i\b|we\b|you\b|it\b|that\b|this\b|nobody\b|no one\b)[a-z]+|(?:my|our) \w+) says,? (?:please )?"
+    r"^(?:" + _SOMEONE + r"|(?:my|our) \w+) says,? (?:please )?"
     r"(?:call|ring|phone|go|come|switch|turn|put|hang up|end)\b|"
     # "I think it's time we put a call through to Dr. Weber" (text test v52); not "it's time for lunch"
     r"^(?:(?:so|well|and) )?(?:(?:i think|i reckon|i'd say) )?it'?s (?:about |high )?time (?:we|you) (?!were\b)\w+|"
