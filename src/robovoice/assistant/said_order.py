@@ -37,6 +37,7 @@ def first_both(parts: list[str], text: str) -> list[str]:
 
 
 _FIRST_OPENS = re.compile(r"^(?:but |and |so )?first\b", re.IGNORECASE)
+_ORDERED = re.compile(r"\b(?:first|then|after|afterwards|before|once|when)\b", re.IGNORECASE)
 # a state only the robot brings about, said as the time for what follows: "Once the projector's on,
 # ring Anna so she can watch with us" (text test v134) is the switch, then the call
 _ONCE_SWITCHED = re.compile(r"^(?:once|as soon as) (?:the|your) projector(?:'s| is) (on|off)$", re.IGNORECASE)
@@ -48,7 +49,6 @@ def switched_first(parts: list[str]) -> list[str]:
             and classify(parts[1]) is ClauseKind.REQUEST:
         return [f"switch the projector {state.group(1).lower()}", *parts[1:]]
     return parts
-_ORDERED = re.compile(r"\b(?:first|then|after|afterwards|before|once|when)\b", re.IGNORECASE)
 
 
 def arrival_first(parts: list[str]) -> list[str]:
